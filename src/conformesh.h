@@ -1,0 +1,11 @@
+// conformesh — the one public C++ header.
+//
+// Surface remeshing by discrete conformal maps: split along features, flatten each patch by
+// discrete Ricci flow with intrinsic Delaunay flips, refine in the plane (Delaunay refinement),
+// lift back to the input surface and stitch. See docs/ARCHITECTURE.md.
+#pragma once
+
+#define CONFORMESH_VERSION "0.1.0"
+
+#include "core/mesh_buffers.h"
+#include "core/status.h"
