@@ -9,3 +9,8 @@
 
 #include "core/mesh_buffers.h"
 #include "core/status.h"
+#include "mesh/halfedge_mesh.h"
+#include "mesh/mesh_geometry.h"
+#include "mesh/primitives.h"
+#include "mesh/topology.h"
+#include "mesh/validate.h"
