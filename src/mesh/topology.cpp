@@ -1,5 +1,6 @@
 #include "mesh/topology.h"
 
+#include <algorithm>
 #include <cmath>
 #include <string>
 
@@ -115,7 +116,8 @@ MeshInfo meshInfo(const MeshBuffers& m, const ValidateOptions& limits) {
     uint32_t c = es.firstNonManifoldCorner;
     info.warnings.push_back({Code::NonManifoldEdge, es.nonManifoldEdges,
                              std::to_string(es.nonManifoldEdges) + " edges are shared by more than two triangles, e.g. (" +
-                                 std::to_string(tris[c]) + ", " + std::to_string(detail::cornerTip(tris, c)) + ") by " +
+                                 std::to_string(std::min(tris[c], detail::cornerTip(tris, c))) + ", " +
+                                 std::to_string(std::max(tris[c], detail::cornerTip(tris, c))) + ") by " +
                                  std::to_string(es.firstNonManifoldFaces)});
   }
 

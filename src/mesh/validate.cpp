@@ -1,5 +1,6 @@
 #include "mesh/validate.h"
 
+#include <algorithm>
 #include <string>
 #include <utility>
 
@@ -75,8 +76,9 @@ ValidatedMesh validate(const MeshBuffers& input, const ValidateOptions& options)
   detail::EdgeStats es = detail::edgeStats(nvIn, tris);
   if (es.nonManifoldEdges > 0) {
     uint32_t c = es.firstNonManifoldCorner;
+    uint32_t a = tris[c], b = detail::cornerTip(tris, c);
     fail(Code::NonManifoldEdge, S,
-         "edge (" + std::to_string(tris[c]) + ", " + std::to_string(detail::cornerTip(tris, c)) + ") is shared by " +
+         "edge (" + std::to_string(std::min(a, b)) + ", " + std::to_string(std::max(a, b)) + ") is shared by " +
              std::to_string(es.firstNonManifoldFaces) + " triangles, e.g. " + tri(tris, faceToInput, c / 3) + " (" +
              std::to_string(es.nonManifoldEdges) + " non-manifold edges)");
   }
