@@ -102,6 +102,12 @@ TEST_CASE("bad input: PLY with a bad header -> ParseError; absurd counts -> TooL
   CHECK(codeOf(bytesOf(triangle)) == Code::Ok);
 }
 
+TEST_CASE("bad input: OFF counts near 2^62 do not overflow the size check") {
+  CHECK(codeOf(bytesOf("OFF\n3 2305843009213693952 0\n0 0 0\n1 0 0\n0 1 0\n3 0 1 2\n")) == Code::TooLarge);
+  CHECK(codeOf(bytesOf("OFF\n4611686018427387904 1 0\n0 0 0\n")) == Code::TooLarge);
+  CHECK(codeOf(bytesOf("OFF\n3 9999999999999999999999 0\n")) == Code::ParseError);
+}
+
 TEST_CASE("bad input: OBJ index out of range, NaN coordinates") {
   CHECK(codeOf(bytesOf("v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 4\n")) == Code::IndexOutOfRange);
   CHECK(codeOf(bytesOf("v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 99999999999999999999\n")) == Code::ParseError);
