@@ -13,9 +13,12 @@
 //   TooLarge             a header count (OFF, PLY) cannot fit in the remaining bytes, or the mesh
 //                        would have more than 2^32 - 2 vertices. Checked before anything is
 //                        allocated from the count.
-//   InvalidArgument      a bad option (negative or NaN weld tolerance, unknown forced format).
+//   InvalidArgument      a bad option: weldTolerance negative, NaN, infinite, or so small that
+//                        coordinates / tolerance exceed 2^50 grid cells.
 // Degenerate faces (repeated indices, zero area) are kept: validation (mesh/validate) drops them.
 // Vertices are kept as in the file, including vertices no face uses (except after welding).
+// A UTF-8 byte order mark at the start of a text file is skipped. Hosts are assumed little endian
+// (x86, ARM, WASM): binary STL floats are read in place.
 #pragma once
 
 #include <cstddef>
