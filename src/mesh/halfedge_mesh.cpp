@@ -173,6 +173,7 @@ void HalfedgeMesh::checkInvariants() const {
   const size_t nh = halfedgeCount();
   if (nh % 2 != 0) bad("odd halfedge count");
   size_t boundary = 0;
+  std::vector<uint8_t> loopChecked(nh, 0);
   for (HalfedgeId h : halfedges()) {
     std::string hs = "halfedge " + std::to_string(h.idx());
     if (!next(h).valid() || next(h).idx() >= nh || !prev(h).valid() || prev(h).idx() >= nh) bad(hs + " has no next/prev");
@@ -185,14 +186,18 @@ void HalfedgeMesh::checkInvariants() const {
     if (isBoundary(h) && isBoundary(twin(h))) bad(hs + ": edge without faces");
     if (isBoundary(h)) {
       ++boundary;
-      // A boundary loop is a closed cycle of boundary halfedges (length capped by nh).
-      size_t n = 0;
-      HalfedgeId g = h;
-      do {
-        g = next(g);
-        ++n;
-      } while (g != h && n <= nh);
-      if (g != h) bad(hs + ": boundary loop does not close");
+      // A boundary loop is a closed cycle of boundary halfedges (length capped by nh); each
+      // loop is walked once.
+      if (!loopChecked[h.idx()]) {
+        size_t n = 0;
+        HalfedgeId g = h;
+        do {
+          loopChecked[g.idx()] = 1;
+          g = next(g);
+          ++n;
+        } while (g != h && n <= nh);
+        if (g != h) bad(hs + ": boundary loop does not close");
+      }
     } else {
       if (face(h).idx() >= faceCount()) bad(hs + ": face out of range");
       if (next(next(next(h))) != h) bad(hs + ": face is not a triangle");
