@@ -108,6 +108,23 @@ try {
       `${name}: {"error":{"code","message",...}} (got ${JSON.stringify(json)})`);
     if (code) check(e?.name === code, `${name}: error ${code} (got ${e?.name})`);
   }
+  // The generated samples are reproducible: `conformesh generate` (commands in web/samples/README.md)
+  // writes the same file: the same bytes for binary formats, the same tokens and the same doubles
+  // for text formats (a number may be printed differently and still parse to the same double).
+  const sameMesh = (a, b, text) => {
+    if (!text) return a.equals(b);
+    const ta = a.toString('latin1').split(/\s+/), tb = b.toString('latin1').split(/\s+/);
+    return ta.length === tb.length && ta.every((x, i) => x === tb[i] || (x !== '' && Number(x) === Number(tb[i])));
+  };
+  const readme = readFileSync(join(samplesDir, 'README.md'), 'utf8');
+  for (const m of readme.matchAll(/`conformesh generate (\S+) --level (\d+) -o (\S+)`/g)) {
+    const [, shape, level, file] = m;
+    const out = join(dir, file);
+    const r = spawnSync(exe, ['generate', shape, '--level', level, '-o', out], { encoding: 'utf8' });
+    check(r.status === 0, `generate ${shape}: exit 0 (${r.stderr})`);
+    check(r.status === 0 && sameMesh(readFileSync(out), readFileSync(join(samplesDir, file)), /\.(obj|off)$/.test(file)),
+      `generate ${shape} --level ${level} reproduces web/samples/${file}`);
+  }
   // A non-manifold edge is counted, not fatal.
   const fin = join(dir, 'fin.obj');
   writeFileSync(fin, 'v 0 0 0\nv 1 0 0\nv 1 1 0\nv 0 1 0\nv 0.5 0.5 1\nf 1 2 3\nf 1 3 4\nf 3 1 5\n');
