@@ -9,3 +9,6 @@
 
 #include "core/mesh_buffers.h"
 #include "core/status.h"
+#include "planar/cdt.h"
+#include "planar/poly_io.h"
+#include "planar/refine.h"
