@@ -452,21 +452,13 @@ void buildCdt(const Pslg& pslg, const CdtOptions& options, const ProgressFn& pro
   b.run(pslg, options);
 }
 
-void extractMesh(const CdtState& s, PlanarMesh& out) {
-  const Triangulation& T = s.tri;
+void extractMesh(CdtState& s, PlanarMesh& out, bool consume) {
+  Triangulation& T = s.tri;
   const uint32_t nv = T.vertexCount();
   out = PlanarMesh{};
-  out.points = T.xy;
-  out.vertexSegment.assign(s.vseg.begin(), s.vseg.end());
-  out.vertexParam.assign(s.vparam.begin(), s.vparam.end());
-  out.vertexSegment.resize(nv, -1);
-  out.vertexParam.resize(nv, 0.0);
-  for (uint32_t i = 0; i < s.nInput; ++i) {
-    if (s.rep[i] != i) {
-      out.vertexSegment[i] = out.vertexSegment[s.rep[i]];
-      out.vertexParam[i] = out.vertexParam[s.rep[i]];
-    }
-  }
+  size_t domainTris = 0;
+  for (uint32_t t = 0; t < T.tris.size(); ++t) domainTris += s.inDomain(t);
+  out.triangles.reserve(3 * domainTris);
   for (uint32_t t = 0; t < T.tris.size(); ++t) {
     if (!s.inDomain(t)) continue;
     const Tri& Tt = T.tris[t];
@@ -482,6 +474,25 @@ void extractMesh(const CdtState& s, PlanarMesh& out) {
       bool hull = seg >= 0 && uint32_t(seg) >= s.nInputSegments;
       out.edgeSegment.push_back(hull ? -1 : seg);
       out.edgeMarker.push_back(seg >= 0 ? s.segMarker[size_t(seg)] : 0);
+    }
+  }
+  if (consume) {
+    std::vector<Tri>().swap(T.tris);  // release before the vertex arrays are handed over
+    std::vector<uint8_t>().swap(T.tf);
+    out.points = std::move(T.xy);
+    out.vertexSegment = std::move(s.vseg);
+    out.vertexParam = std::move(s.vparam);
+  } else {
+    out.points = T.xy;
+    out.vertexSegment = s.vseg;
+    out.vertexParam = s.vparam;
+  }
+  out.vertexSegment.resize(nv, -1);
+  out.vertexParam.resize(nv, 0.0);
+  for (uint32_t i = 0; i < s.nInput; ++i) {
+    if (s.rep[i] != i) {
+      out.vertexSegment[i] = out.vertexSegment[s.rep[i]];
+      out.vertexParam[i] = out.vertexParam[s.rep[i]];
     }
   }
   for (uint32_t i = 0; i < nv; ++i)

@@ -39,7 +39,8 @@ struct CdtState {
 
 //! Build the CDT and classify the domain. Throws as triangulatePslg.
 void buildCdt(const Pslg& pslg, const CdtOptions& options, const ProgressFn& progress, CdtState& s);
-//! Domain triangles, constrained edges and per-vertex segment data of the state.
-void extractMesh(const CdtState& s, PlanarMesh& out);
+//! Domain triangles, constrained edges and per-vertex segment data of the state. With
+//! `consume`, the vertex arrays are moved out of `s` (it must not be used afterwards).
+void extractMesh(CdtState& s, PlanarMesh& out, bool consume = false);
 
 }  // namespace conformesh::planar

@@ -6,6 +6,7 @@
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
+#include <cstring>
 #include <string>
 
 #include "planar/cdt_state.h"
@@ -19,30 +20,46 @@ struct BadEntry {
   uint32_t t, a, b, c;
 };
 
+// FIFO ring buffer of bad-triangle entries (no per-element allocation, no front erase).
+class Ring {
+ public:
+  bool empty() const { return head_ == tail_; }
+  size_t size() const { return tail_ - head_; }
+  void push(const BadEntry& e) {
+    if (tail_ - head_ == buf_.size()) grow();
+    buf_[tail_ & (buf_.size() - 1)] = e;
+    ++tail_;
+  }
+  BadEntry pop() { return buf_[head_++ & (buf_.size() - 1)]; }
+
+ private:
+  void grow() {
+    std::vector<BadEntry> nb(buf_.empty() ? 256 : 2 * buf_.size());
+    for (size_t k = head_; k < tail_; ++k) nb[k - head_] = buf_[k & (buf_.size() - 1)];
+    tail_ -= head_;
+    head_ = 0;
+    buf_.swap(nb);
+  }
+  std::vector<BadEntry> buf_;
+  size_t head_ = 0, tail_ = 0;
+};
+
 // Bucketed priority queue of bad triangles: lowest bucket first, FIFO inside a bucket.
 class BadQueue {
  public:
   static constexpr int kBuckets = 256;
   void push(int bucket, const BadEntry& e) {
-    q_[bucket].push_back(e);
+    q_[bucket].push(e);
     if (bucket < lowest_) lowest_ = bucket;
     ++count_;
   }
   bool pop(BadEntry& e) {
     while (lowest_ < kBuckets) {
-      auto& q = q_[lowest_];
-      size_t& h = head_[lowest_];
-      if (h < q.size()) {
-        e = q[h++];
+      if (!q_[lowest_].empty()) {
+        e = q_[lowest_].pop();
         --count_;
-        if (h > 4096 && 2 * h > q.size()) {
-          q.erase(q.begin(), q.begin() + std::ptrdiff_t(h));
-          h = 0;
-        }
         return true;
       }
-      q.clear();
-      h = 0;
       ++lowest_;
     }
     return false;
@@ -50,8 +67,7 @@ class BadQueue {
   size_t size() const { return count_; }
 
  private:
-  std::vector<BadEntry> q_[kBuckets];
-  size_t head_[kBuckets] = {};
+  Ring q_[kBuckets];
   int lowest_ = kBuckets;
   size_t count_ = 0;
 };
@@ -61,7 +77,9 @@ class Refiner {
   Refiner(CdtState& s, const RefineOptions& o) : s_(s), T_(s.tri), o_(o) {
     double th = o.minAngleDeg * kPi / 180.0;
     angleOn_ = o.minAngleDeg > 0;
-    cos2Bound_ = std::cos(th) * std::cos(th);
+    // A hair above θ, so that a triangle that is at θ up to rounding is split rather than
+    // reported as 29.999999999999993 degrees.
+    cos2Bound_ = std::cos(th) * std::cos(th) * (1.0 - 1e-9);
     lensCos2_ = angleOn_ && o.diametralLens ? std::cos(2 * th) * std::cos(2 * th) : 0.0;
     sin2Bound_ = std::sin(th) * std::sin(th);
     offK_ = (o.offcenters && angleOn_) ? o.offcenterFactor / (2.0 * std::tan(th / 2)) : INFINITY;
@@ -78,6 +96,7 @@ class Refiner {
       y1 = std::max(y1, T_.xy[i + 1]);
     }
     double diag = std::hypot(x1 - x0, y1 - y0);
+    reserveForSize();
     minSeg2_ = (diag * 1e-11) * (diag * 1e-11);
     invDiag2_ = 1.0 / (diag * diag);
   }
@@ -193,6 +212,41 @@ class Refiner {
     }
   }
 
+  // Reserve the arrays for the expected output when a uniform size bound is given, so the
+  // hot loop neither reallocates nor copies (estimates calibrated on data/pslg: Delaunay
+  // refinement meshes average ~0.62 maxArea and ~0.205 maxEdge^2 per triangle).
+  void reserveForSize() {
+    double area = 0;
+    for (uint32_t t = 0; t < T_.tris.size(); ++t) {
+      if (!s_.inDomain(t)) continue;
+      const Tri& Tt = T_.tris[t];
+      const double* a = T_.pt(Tt.v[0]);
+      const double* b = T_.pt(Tt.v[1]);
+      const double* c = T_.pt(Tt.v[2]);
+      area += 0.5 * ((b[0] - a[0]) * (c[1] - a[1]) - (b[1] - a[1]) * (c[0] - a[0]));
+    }
+    double est = 0;
+    if (o_.maxArea > 0) est = area / (0.60 * o_.maxArea);
+    if (o_.maxEdge > 0) est = std::max(est, area / (0.20 * o_.maxEdge * o_.maxEdge));
+    if (!(est > 0) || est > 1e9) return;
+    size_t nt = T_.tris.size() + size_t(1.04 * est), nv = T_.vertexCount() + size_t(0.52 * est);
+    T_.tris.reserve(nt);
+    T_.tf.reserve(nt);
+    T_.xy.reserve(2 * nv);
+    T_.vtri.reserve(nv);
+    s_.vseg.reserve(nv);
+    s_.vparam.reserve(nv);
+  }
+
+  // floor(4 log2 x), approximately (exponent and the top two mantissa bits), for x > 0.
+  static int quarterOctave(double x) {
+    uint64_t bits;
+    std::memcpy(&bits, &x, sizeof bits);
+    int e = int((bits >> 52) & 0x7FF) - 1023;
+    int m = int((bits >> 50) & 3);
+    return 4 * e + m;
+  }
+
   static double dist2(const double* a, const double* b) {
     double dx = a[0] - b[0], dy = a[1] - b[1];
     return dx * dx + dy * dy;
@@ -237,7 +291,7 @@ class Refiner {
       // Shortest edge first, in quarter-octave buckets of the squared length (relative to the
       // bounding box): refining the finest features first gives markedly fewer Steiner points
       // than worst-angle-first (measured on data/pslg; see bench/refine2d_bench.cpp).
-      int k = int(-4.0 * std::log2(l[s] * invDiag2_));
+      int k = -quarterOctave(l[s] * invDiag2_);
       bucket = BadQueue::kBuckets - 2 - std::max(0, std::min(BadQueue::kBuckets - 2, k));
     } else if (sizeOn_) {
       double cross = ex[2] * (-ey[1]) - ey[2] * (-ex[1]);
@@ -491,7 +545,6 @@ RefineResult refinePslg(const Pslg& pslg, const RefineOptions& options) {
   buildCdt(pslg, options.cdt, options.progress, s);
   Refiner ref(s, options);
   RefineResult r = ref.run();
-  extractMesh(s, r.mesh);
   // Quality summary over the domain triangles.
   const Triangulation& T = s.tri;
   double minSin2 = INFINITY;
@@ -516,6 +569,7 @@ RefineResult refinePslg(const Pslg& pslg, const RefineOptions& options) {
     }
     minSin2 = std::min(minSin2, sin2);
   }
+  extractMesh(s, r.mesh, true);
   r.minAngleDeg = std::isfinite(minSin2) ? std::asin(std::sqrt(std::min(1.0, minSin2))) * 180.0 / kPi : 0.0;
   r.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
   if (options.progress && !options.progress(Stage::Refine, 1.0))
