@@ -16,3 +16,6 @@
 #include "mesh/topology.h"
 #include "mesh/validate.h"
 #include "mesh/weld_vertices.h"
+#include "planar/cdt.h"
+#include "planar/poly_io.h"
+#include "planar/refine.h"
