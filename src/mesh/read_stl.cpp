@@ -64,6 +64,20 @@ void readStlBinary(const Source& src, const ReadOptions&, ReadResult& result) {
 
 void readStlAscii(const Source& src, const ReadOptions&, ReadResult& result) {
   result.format = MeshFormat::StlAscii;
+  // Control bytes mean binary data: most often a binary STL whose header begins with "solid" but
+  // whose size does not match its triangle count (truncated).
+  for (size_t i = 0; i < src.size; ++i) {
+    const uint8_t c = src.data[i];
+    if (c < 0x20 && c != '\n' && c != '\r' && c != '\t' && c != '\f' && c != '\v') {
+      std::string hint;
+      if (src.size >= 84) {
+        const uint64_t n = uint64_t(loadLE32(src.data + 80));
+        hint = "; as a binary STL, its size " + std::to_string(src.size) + " != 84 + 50 * " + std::to_string(n) +
+               " (truncated?)";
+      }
+      src.failOffset(Code::ParseError, i, "binary byte in an ascii STL" + hint);
+    }
+  }
   const char* text = reinterpret_cast<const char*>(src.data);
   TextScanner sc(text, text + src.size, '\0');
   std::vector<double> soup;
