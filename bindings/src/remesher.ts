@@ -58,7 +58,10 @@ export interface RemesherOptions {
   init?: { wasmModule?: WebAssembly.Module; wasmBinary?: ArrayBuffer | Uint8Array; wasmUrl?: string };
 }
 
-/** The package API, asynchronous, running in workers. Call terminate() when done. */
+/**
+ * The package API, asynchronous, running in workers. terminate() stops them (in Node, idle
+ * workers do not keep the process alive; in browsers they live until terminate() or page unload).
+ */
 export interface Remesher {
   readonly workers: number;
   readMesh(bytes: MeshBytes, format?: MeshFormat | 'auto' | ReadMeshOptions, call?: CallOptions): Promise<ReadMeshResult>;
