@@ -9,3 +9,5 @@
 
 #include "core/mesh_buffers.h"
 #include "core/status.h"
+#include "mesh/mesh_io.h"
+#include "mesh/weld_vertices.h"
