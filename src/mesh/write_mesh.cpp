@@ -1,6 +1,7 @@
 // conformesh — mesh writers: OBJ (optional vt), OFF, STL ascii and binary, PLY ascii and binary
 // (little or big endian, double coordinates, uint32 indices).
 #include <cmath>
+#include <cstdint>
 #include <string>
 #include <vector>
 
@@ -131,6 +132,7 @@ void putFloatLE(uint8_t* p, double v) {
 std::vector<uint8_t> writeStlBinary(const MeshBuffers& mesh) {
   const size_t nt = mesh.triangleCount();
   if (uint64_t(nt) > 0xFFFFFFFFull) fail(Code::TooLarge, Stage::Write, "binary STL holds at most 2^32 - 1 triangles");
+  if (nt > (SIZE_MAX - 84) / 50) fail(Code::TooLarge, Stage::Write, "binary STL would not fit in memory");
   std::vector<uint8_t> out(84 + 50 * nt, 0);
   const char header[] = "binary STL written by conformesh";
   std::memcpy(out.data(), header, sizeof(header) - 1);  // not "solid": readers must not take it for ascii
@@ -183,6 +185,8 @@ std::vector<uint8_t> writePly(const MeshBuffers& mesh, MeshFormat format, bool u
   const size_t perVertex = uvs ? 5 : 3;
   std::vector<uint8_t> out(h.begin(), h.end());
   const size_t body = out.size();
+  if (nv > (SIZE_MAX / 2 - body) / (perVertex * 8) || nt > (SIZE_MAX / 2) / 13)
+    fail(Code::TooLarge, Stage::Write, "PLY would not fit in memory");
   out.resize(body + nv * perVertex * 8 + nt * 13);
   uint8_t* q = out.data() + body;
   auto put = [&](const void* src, size_t n) {
