@@ -18,7 +18,8 @@ const ROOT = path.resolve(path.dirname(fileURLToPath(import.meta.url)), '..');
 const DATA = path.resolve(ROOT, '../shared/data');
 const WORK = path.join(ROOT, 'bench/work');
 const PEERS = path.join(WORK, 'peers');
-const NATIVE = path.join(ROOT, 'build/native');
+// --native-dir DIR: take our native tools from another build (e.g. a helper's worktree) — testing only.
+const NATIVE = (() => { const i = process.argv.indexOf('--native-dir'); return i > 0 ? path.resolve(process.argv[i + 1]) : path.join(ROOT, 'build/native'); })();
 const WASM = path.join(ROOT, 'build/wasm');
 const RESULTS = path.join(ROOT, 'bench/results');
 const RUNSTAT = path.join(PEERS, 'runstat');
@@ -161,11 +162,10 @@ function ours2d(input, angle, maxArea, outFile) {
     return [CLI, ['refine2d', input, '-o', outFile, '--min-angle', String(angle), ...(maxArea ? ['--max-area', String(maxArea)] : []), '--json']];
   return null;
 }
-/** Our flattening: JSON keys used: seconds, iterations, maxCurvatureError, flips, invertedTriangles. */
-function oursFlatten(input, outFile) {
-  const t = nativeTool('bench_flatten');
-  if (t) return [t, [input]];
-  if (cliCommands.has('flatten')) return [CLI, ['flatten', input, '-o', outFile, '--json']];
+/** Our flattening (issue 4's CLI): JSON keys used: seconds, iterations, maxCurvatureError, flips,
+ *  invertedTriangles. `boundary`: circle (like CGAL's circular border) or free. */
+function oursFlatten(input, outFile, boundary) {
+  if (cliCommands.has('flatten')) return [CLI, ['flatten', input, '-o', outFile, '--boundary', boundary, '--json']];
   return null;
 }
 /** Our remesh: JSON keys used: seconds, triangles, stage seconds when reported. */
@@ -313,19 +313,21 @@ function sectionFlatten() {
   const cgal = peer('cgal_dcm');
   const rows = [];
   for (const [name, file] of inputs) {
-    const row = { input: name };
-    row.cgal = cgal ? record(repeatRun(cgal, [file], REPEAT, { timeout: 300 }), ['faces', 'seconds', 'invertedTriangles']) : { available: false, note: 'CGAL driver missing' };
-    const o = oursFlatten(file, path.join(WORK, 'flatten-out.obj'));
-    row.ours = record(o ? repeatRun(o[0], o[1], REPEAT, { timeout: 300 }) : null,
-      ['seconds', 'iterations', 'maxCurvatureError', 'flips', 'invertedTriangles']);
-    if (!o) row.ours.note = `${NOT_YET}: build/native/bench_flatten or conformesh flatten`;
-    row.timeRatioOursToCgal = ratio(row.ours.seconds ?? row.ours.medianWallSeconds, row.cgal.seconds);
-    sec.rows.push(row);
-    rows.push([name, row.cgal.faces ?? null, row.ours.ok ? row.ours.seconds ?? row.ours.medianWallSeconds : (row.ours.available ? 'failed' : NOT_YET),
-      row.ours.iterations ?? null, row.ours.invertedTriangles ?? null, row.cgal.ok ? row.cgal.seconds : (row.cgal.error || '—'), row.cgal.invertedTriangles ?? null,
-      row.ours.medianPeakRssBytes ? row.ours.medianPeakRssBytes / 1e6 : null, row.cgal.medianPeakRssBytes ? row.cgal.medianPeakRssBytes / 1e6 : null, row.timeRatioOursToCgal]);
+    const cgalRec = cgal ? record(repeatRun(cgal, [file], REPEAT, { timeout: 300 }), ['faces', 'seconds', 'invertedTriangles']) : { available: false, note: 'CGAL driver missing' };
+    for (const boundary of ['circle', 'free']) {
+      const row = { input: name, oursBoundary: boundary, cgal: cgalRec };
+      const o = oursFlatten(file, path.join(WORK, 'flatten-out.obj'), boundary);
+      row.ours = record(o ? repeatRun(o[0], o[1], REPEAT, { timeout: 300 }) : null,
+        ['seconds', 'iterations', 'maxCurvatureError', 'flips', 'invertedTriangles']);
+      if (!o) row.ours.note = `${NOT_YET}: conformesh flatten`;
+      row.timeRatioOursToCgal = ratio(row.ours.seconds ?? row.ours.medianWallSeconds, row.cgal.seconds);
+      sec.rows.push(row);
+      rows.push([name, boundary, row.cgal.faces ?? null, row.ours.ok ? row.ours.seconds ?? row.ours.medianWallSeconds : (row.ours.available ? `failed: ${String(row.ours.error).slice(0, 50)}` : NOT_YET),
+        row.ours.iterations ?? null, row.ours.maxCurvatureError ?? null, row.ours.invertedTriangles ?? null, row.cgal.ok ? row.cgal.seconds : (row.cgal.error || '—'), row.cgal.invertedTriangles ?? null,
+        row.ours.medianPeakRssBytes ? row.ours.medianPeakRssBytes / 1e6 : null, row.cgal.medianPeakRssBytes ? row.cgal.medianPeakRssBytes / 1e6 : null, row.timeRatioOursToCgal]);
+    }
   }
-  table(`flatten: median of ${REPEAT} (time ratio < 1: ours faster)`, ['input', 'faces', 'ours s', 'ours Newton its', 'ours inverted', 'CGAL s', 'CGAL inverted', 'ours MB', 'CGAL MB', 'time ours/CGAL'], rows);
+  table(`flatten: median of ${REPEAT} (time ratio < 1: ours faster)`, ['input', 'ours boundary', 'faces', 'ours s', 'ours Newton its', 'ours curvature error', 'ours inverted', 'CGAL s (circle)', 'CGAL inverted', 'ours MB', 'CGAL MB', 'time ours/CGAL'], rows);
   return sec;
 }
 
