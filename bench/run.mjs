@@ -216,18 +216,23 @@ function sectionIo() {
 // ---- section: 2d ------------------------------------------------------------------------------
 const PSLGS = ['square_holes', 'wiggly5000', 'alligator_s3_lscm'];
 
-/** Size parameter giving ~target triangles: calibrated at target/10 (cheap), then scaled.
- *  `exponent`: triangles ∝ param^(-exponent) (1 for an area bound, 2 for an edge bound). */
-function calibrate(runAt, guess, target, exponent) {
+/** Size parameter p with runAt(p) ≈ n triangles, by rescaling (triangles ∝ p^(-exponent): 1 for an
+ *  area bound, 2 for an edge bound). Pick n well above the count with no size bound (else the
+ *  size bound is inactive and the fit saturates). */
+function calibrateAt(runAt, guess, n, exponent) {
   let p = guess;
-  const small = target / 10;
-  for (let k = 0; k < 4; ++k) {
-    const n = runAt(p);
-    if (!n) return null;
-    p = p * Math.pow(n / small, 1 / exponent);
-    if (Math.abs(Math.log(n / small)) < 0.15) break;
+  for (let k = 0; k < 5; ++k) {
+    const got = runAt(p);
+    if (!got) return null;
+    if (Math.abs(Math.log(got / n)) < 0.1) break;
+    p = p * Math.pow(got / n, 1 / exponent);
   }
-  return p / Math.pow(10, 1 / exponent);
+  return p;
+}
+/** Size parameter for `target` triangles: calibrated at target/4 (cheaper), then scaled. */
+function calibrate(runAt, guess, target, exponent) {
+  const p = calibrateAt(runAt, guess, target / 4, exponent);
+  return p ? p / Math.pow(4, 1 / exponent) : null;
 }
 
 function polyBboxArea(file) {
@@ -274,7 +279,7 @@ function section2d() {
     const row = { input: name, minAngleBound: 30, targetTriangles: target };
     if (cgal) {
       const L = calibrate((L) => run(cgal, [input, '--min-angle', '30', '--max-edge', String(L)], { timeout: 120 }).json?.triangles,
-        Math.sqrt(bbox / (target / 10) * 4), target, 2);
+        Math.sqrt(bbox / (target / 4) * 4), target, 2);
       const c = L ? repeatRun(cgal, [input, '--min-angle', '30', '--max-edge', String(L)], REPEAT, { timeout: 300 }) : null;
       row.cgal = record(c, ['triangles', 'minAngle', 'seconds', 'peakRssBytes']);
       row.cgal.maxEdge = L;
@@ -282,7 +287,7 @@ function section2d() {
     const probe = ours2d(input, 30, 1, out);
     if (probe) {
       const A = calibrate((A) => { const o = ours2d(input, 30, A, out); return run(o[0], o[1], { timeout: 120 }).json?.triangles; },
-        bbox / (target / 10), target, 1);
+        bbox / (target / 4), target, 1);
       const o = A ? ours2d(input, 30, A, out) : null;
       row.ours = record(o ? repeatRun(o[0], o[1], REPEAT, { timeout: 300 }) : null, ['triangles', 'minAngle', 'seconds']);
       row.ours.maxArea = A;
@@ -473,11 +478,11 @@ function sectionScaling() {
   // refine2d, CGAL
   const cgal = peer('cgal_mesh2');
   if (cgal) {
-    const L = calibrate((L) => run(cgal, [input, '--min-angle', '30', '--max-edge', String(L)], { timeout: 120 }).json?.triangles,
-      Math.sqrt(bbox / 1e3 * 4), 1e4, 2);
+    const L = calibrateAt((L) => run(cgal, [input, '--min-angle', '30', '--max-edge', String(L)], { timeout: 120 }).json?.triangles,
+      Math.sqrt(bbox / 1e5 * 4), 1e5, 2);
     const pts = [];
-    for (const t of targets) {
-      const Lt = L * Math.sqrt(1e4 / t);
+    for (const t of L ? targets : []) {
+      const Lt = L * Math.sqrt(1e5 / t);
       const rr = repeatRun(cgal, [input, '--min-angle', '30', '--max-edge', String(Lt)], REPEAT, { timeout: 300 });
       if (rr.ok) pts.push({ target: t, triangles: rr.med('triangles'), seconds: rr.med('seconds'), peakRssBytes: rr.peakRss });
     }
@@ -485,10 +490,10 @@ function sectionScaling() {
   } else sec.series.push({ label: 'refine2d CGAL Mesh_2', status: 'CGAL driver missing' });
   // refine2d, ours
   if (ours2d(input, 30, 1, out)) {
-    const A = calibrate((A) => { const o = ours2d(input, 30, A, out); return run(o[0], o[1], { timeout: 120 }).json?.triangles; }, bbox / 1e3, 1e4, 1);
+    const A = calibrateAt((A) => { const o = ours2d(input, 30, A, out); return run(o[0], o[1], { timeout: 120 }).json?.triangles; }, bbox / 1e5, 1e5, 1);
     const pts = [];
-    for (const t of targets) {
-      const o = ours2d(input, 30, A * (1e4 / t), out);
+    for (const t of A ? targets : []) {
+      const o = ours2d(input, 30, A * (1e5 / t), out);
       const rr = repeatRun(o[0], o[1], REPEAT, { timeout: 300 });
       if (rr.ok) pts.push({ target: t, triangles: rr.med('triangles'), seconds: rr.med('seconds') ?? rr.wall, peakRssBytes: rr.peakRss });
     }
