@@ -2,6 +2,7 @@
 //
 //   node bench/run.mjs [--sections io,2d,flatten,remesh,wasm,scaling] [--quick] [--repeat N]
 //                      [--models a.off,b.obj]   (remesh: a subset of ../shared/data)
+//                      [--native-dirs A:B] [--wasm-dirs A:B]   (where our tools are looked up)
 //
 // Every number is measured in this run, ours and the peers' side by side, and reported as
 // medians of several runs and as ratios (these machines are noisy: ±25% run to run). A tool that
@@ -18,9 +19,13 @@ const ROOT = path.resolve(path.dirname(fileURLToPath(import.meta.url)), '..');
 const DATA = path.resolve(ROOT, '../shared/data');
 const WORK = path.join(ROOT, 'bench/work');
 const PEERS = path.join(WORK, 'peers');
-// --native-dir DIR: take our native tools from another build (e.g. a helper's worktree) — testing only.
-const NATIVE = (() => { const i = process.argv.indexOf('--native-dir'); return i > 0 ? path.resolve(process.argv[i + 1]) : path.join(ROOT, 'build/native'); })();
-const WASM = path.join(ROOT, 'build/wasm');
+// --native-dirs A:B and --wasm-dirs A:B: where to look for our tools, in order (default: this
+// checkout's build/native and build/wasm). Lets the bench measure stages built on other branches
+// before they are merged; the results record which binary (and git commit) each number came from.
+const dirsOpt = (name, def) => { const i = process.argv.indexOf(name); return (i > 0 ? process.argv[i + 1].split(':') : [def]).map((d) => path.resolve(ROOT, d)); };
+const NATIVE_DIRS = dirsOpt('--native-dirs', 'build/native');
+const WASM_DIRS = dirsOpt('--wasm-dirs', 'build/wasm');
+const NATIVE = NATIVE_DIRS[0];
 const RESULTS = path.join(ROOT, 'bench/results');
 const RUNSTAT = path.join(PEERS, 'runstat');
 const NOT_YET = 'not available yet';
@@ -143,13 +148,14 @@ function machine() {
 }
 
 // ---- our tools (adapters: prefer the bench_* tools, else the CLI command) -----------------------
-const CLI = path.join(NATIVE, 'conformesh');
-const cliCommands = (() => {
-  if (!exe(CLI)) return new Set();
-  const h = spawnSync(CLI, ['--help'], { encoding: 'utf8' }).stdout || '';
-  return new Set([...h.matchAll(/^\s+conformesh (\S+)/gm)].map((m) => m[1]));
-})();
-const nativeTool = (name) => (exe(path.join(NATIVE, name)) ? path.join(NATIVE, name) : null);
+const nativeTool = (name) => NATIVE_DIRS.map((d) => path.join(d, name)).find(exe) || null;
+const wasmTool = (name) => WASM_DIRS.flatMap((d) => ['.cjs', '.js', '.mjs'].map((x) => path.join(d, name + x))).find(existsSync) || null;
+/** The first conformesh CLI (in NATIVE_DIRS order) that has `command`. */
+const CLIS = NATIVE_DIRS.map((d) => path.join(d, 'conformesh')).filter(exe).map((p) => {
+  const h = spawnSync(p, ['--help'], { encoding: 'utf8' }).stdout || '';
+  return { path: p, commands: new Set([...h.matchAll(/^\s+conformesh (\S+)/gm)].map((m) => m[1])) };
+});
+const cliFor = (command) => (CLIS.find((c) => c.commands.has(command)) || {}).path || null;
 const QUALITY = nativeTool('quality_tool');
 const PREP = nativeTool('bench_prep');
 const peer = (name) => (exe(path.join(PEERS, name)) ? path.join(PEERS, name) : null);
@@ -158,26 +164,40 @@ const peer = (name) => (exe(path.join(PEERS, name)) ? path.join(PEERS, name) : n
 function ours2d(input, angle, maxArea, outFile) {
   const t = nativeTool('bench_refine2d');
   if (t) return [t, [input, '--min-angle', String(angle), ...(maxArea ? ['--max-area', String(maxArea)] : [])]];
-  if (cliCommands.has('refine2d'))
-    return [CLI, ['refine2d', input, '-o', outFile, '--min-angle', String(angle), ...(maxArea ? ['--max-area', String(maxArea)] : []), '--json']];
+  if (cliFor('refine2d'))
+    return [cliFor('refine2d'), ['refine2d', input, '-o', outFile, '--min-angle', String(angle), ...(maxArea ? ['--max-area', String(maxArea)] : []), '--json']];
   return null;
 }
 /** Our flattening (issue 4's CLI): JSON keys used: seconds, iterations, maxCurvatureError, flips,
  *  invertedTriangles. `boundary`: circle (like CGAL's circular border) or free. */
 function oursFlatten(input, outFile, boundary) {
-  if (cliCommands.has('flatten')) return [CLI, ['flatten', input, '-o', outFile, '--boundary', boundary, '--json']];
+  if (cliFor('flatten')) return [cliFor('flatten'), ['flatten', input, '-o', outFile, '--boundary', boundary, '--json']];
   return null;
 }
 /** Our remesh: JSON keys used: seconds, triangles, stage seconds when reported. */
 function oursRemesh(input, rel, outFile) {
-  if (cliCommands.has('remesh')) return [CLI, ['remesh', input, '-o', outFile, '--edge-length-rel', String(rel), '--json']];
+  if (cliFor('remesh')) return [cliFor('remesh'), ['remesh', input, '-o', outFile, '--edge-length-rel', String(rel), '--json']];
   return null;
 }
 const seconds = (rr) => (rr && rr.ok ? (rr.med('seconds') ?? rr.wall) : null);
 
+function provenance() {
+  const out = {};
+  const note = (label, p) => {
+    if (!p) return;
+    const dir = path.dirname(p);
+    out[label] = { path: p, gitCommit: sh(`git -C ${dir} rev-parse --short HEAD`), gitBranch: sh(`git -C ${dir} rev-parse --abbrev-ref HEAD`),
+      gitDirty: (sh(`git -C ${dir} status --porcelain --untracked-files=no`) || '') !== '', builtAt: statSync(p).mtime.toISOString() };
+  };
+  for (const t of ['quality_tool', 'bench_prep', 'bench_read_stl', 'bench_refine2d']) note(t, nativeTool(t));
+  for (const c of ['refine2d', 'flatten', 'remesh']) note(`conformesh ${c}`, cliFor(c));
+  for (const t of ['bench_refine2d', 'bench_flatten', 'bench_read_stl']) note(`wasm ${t}`, wasmTool(t));
+  return out;
+}
+
 // ---- results --------------------------------------------------------------------------------
 const markdown = [];
-const results = { tool: 'conformesh bench', startedAt: new Date().toISOString(), options: { sections: SECTIONS, quick: QUICK, repeat: REPEAT }, machine: machine(), sections: {} };
+const results = { tool: 'conformesh bench', startedAt: new Date().toISOString(), options: { sections: SECTIONS, quick: QUICK, repeat: REPEAT, nativeDirs: NATIVE_DIRS, wasmDirs: WASM_DIRS }, machine: machine(), binaries: provenance(), sections: {} };
 log(`conformesh bench — ${results.machine.cpuModel}, ${results.machine.nproc} cores, ${fmt(results.machine.memoryBytes / 2 ** 30)} GiB, load ${results.machine.loadAverageAtStart.map((x) => x.toFixed(2)).join(' ')}`);
 if (!QUALITY) log('WARNING: build/native/quality_tool missing: surface quality columns will be empty');
 
@@ -422,13 +442,12 @@ function sectionWasm() {
   const sec = { description: 'The same benchmark programs compiled to WebAssembly, run under Node, vs native (target: WASM within 1.3× native).', rows: [] };
   const pairs = [
     ['bench_refine2d', [path.join(DATA, 'pslg/wiggly5000.poly'), '--min-angle', '30']],
-    ['bench_flatten', [path.join(DATA, 'face.obj')]],
     ['bench_read_stl', ['1000000', '5']],
   ];
   const rows = [];
   for (const [name, args] of pairs) {
     const native = nativeTool(name);
-    const wasmJs = ['.cjs', '.js', '.mjs'].map((s) => path.join(WASM, name + s)).find(existsSync);
+    const wasmJs = wasmTool(name);
     const row = { tool: name };
     if (!native || !wasmJs) {
       row.status = `${NOT_YET}: ${!native ? `build/native/${name}` : ''}${!native && !wasmJs ? ' and ' : ''}${!wasmJs ? `build/wasm/${name}.cjs` : ''}`;
@@ -447,6 +466,8 @@ function sectionWasm() {
     }
     sec.rows.push(row);
   }
+  sec.rows.push({ tool: 'flatten', status: `${NOT_YET}: no WASM flatten program taking an input file (conformesh flatten is native-only)` });
+  rows.push(['flatten', NOT_YET, NOT_YET, null]);
   table(`wasm vs native: median of ${REPEAT}`, ['program', 'native s', 'wasm s', 'wasm/native'], rows);
   return sec;
 }
@@ -503,7 +524,7 @@ function sectionScaling() {
     rows.push(['refine2d ours', NOT_YET, null, null, null, null]);
   }
   // remesh, ours (fandisk; triangles ∝ rel^-2: 0.004 gives ~180k)
-  if (cliCommands.has('remesh')) {
+  if (cliFor('remesh')) {
     const pts = [];
     for (const t of targets) {
       const rel = 0.004 * Math.sqrt(1.8e5 / t);
@@ -532,14 +553,20 @@ for (const name of SECTIONS) {
     results.sections[name] = { status: 'failed', error: String(e.stack || e) };
   }
   results.sections[name].elapsedSeconds = (Date.now() - t0) / 1000;
+  writeResults(false);
 }
-results.finishedAt = new Date().toISOString();
-results.machine.loadAverageAtEnd = os.loadavg();
-const stamp = results.startedAt.replace(/[:]/g, '').replace(/\..*/, '');
-const jsonName = `bench-${stamp}${QUICK ? '-quick' : ''}.json`;
-writeFileSync(path.join(RESULTS, jsonName), JSON.stringify(results, null, 1) + '\n');
-writeFileSync(path.join(RESULTS, 'latest.json'), JSON.stringify(results, null, 1) + '\n');
-const m = results.machine;
-const header = `# conformesh bench ${results.startedAt}\n\nMachine: ${m.cpuModel}, ${m.nproc} cores, ${fmt(m.memoryBytes / 2 ** 30)} GiB RAM, ${m.os}; load average at start ${m.loadAverageAtStart.map((x) => x.toFixed(2)).join(' ')}, at end ${m.loadAverageAtEnd.map((x) => x.toFixed(2)).join(' ')}. CGAL ${m.cgal}, gmsh ${m.gmsh}, ${m.gxx}. Commit ${m.gitCommit}${m.gitDirty ? ' (dirty)' : ''}. Options: ${JSON.stringify(results.options)}.\n\n`;
-writeFileSync(path.join(RESULTS, 'latest.md'), header + markdown.join('\n'));
+const jsonName = writeResults(true);
 log(`\nwrote bench/results/${jsonName}, bench/results/latest.json, bench/results/latest.md`);
+
+function writeResults(final) {
+  results.finishedAt = final ? new Date().toISOString() : null;
+  results.machine.loadAverageAtEnd = os.loadavg();
+  const stamp = results.startedAt.replace(/[:]/g, '').replace(/\..*/, '');
+  const jsonName = `bench-${stamp}${QUICK ? '-quick' : ''}.json`;
+  writeFileSync(path.join(RESULTS, jsonName), JSON.stringify(results, null, 1) + '\n');
+  writeFileSync(path.join(RESULTS, 'latest.json'), JSON.stringify(results, null, 1) + '\n');
+  const m = results.machine;
+  const header = `# conformesh bench ${results.startedAt}${final ? '' : ' (partial: still running)'}\n\nMachine: ${m.cpuModel}, ${m.nproc} cores, ${fmt(m.memoryBytes / 2 ** 30)} GiB RAM, ${m.os}; load average at start ${m.loadAverageAtStart.map((x) => x.toFixed(2)).join(' ')}, at end ${m.loadAverageAtEnd.map((x) => x.toFixed(2)).join(' ')}. CGAL ${m.cgal}, gmsh ${m.gmsh}, ${m.gxx}. Commit ${m.gitCommit}${m.gitDirty ? ' (dirty)' : ''}. Options: ${JSON.stringify(results.options)}.\n\n`;
+  writeFileSync(path.join(RESULTS, 'latest.md'), header + markdown.join('\n'));
+  return jsonName;
+}
