@@ -16,8 +16,18 @@ ROOT="$(pwd)"
 OUT="$ROOT/build/fuzz"
 SECONDS_EACH="${FUZZ_SECONDS:-60}"
 CXX="${FUZZ_CXX:-clang++-14}"
-command -v "$CXX" >/dev/null 2>&1 || CXX=clang++
-command -v "$CXX" >/dev/null 2>&1 || { echo "fuzz: clang++ not found (apt-get install clang)"; exit 2; }
+# clang 14 and its libFuzzer/sanitizer runtimes (Debian 12: clang-14, libclang-rt-14-dev).
+need=()
+command -v clang++-14 >/dev/null 2>&1 || need+=(clang-14)
+dpkg -s libclang-rt-14-dev >/dev/null 2>&1 || need+=(libclang-rt-14-dev)
+if [ -z "${FUZZ_CXX:-}" ] && [ ${#need[@]} -gt 0 ]; then
+  echo "fuzz: installing ${need[*]}"
+  SUDO=""
+  [ "$(id -u)" -ne 0 ] && SUDO="sudo"
+  $SUDO apt-get update -q && DEBIAN_FRONTEND=noninteractive $SUDO apt-get install -y -q "${need[@]}" \
+    || { echo "fuzz: could not install ${need[*]}"; exit 2; }
+fi
+command -v "$CXX" >/dev/null 2>&1 || { echo "fuzz: $CXX not found"; exit 2; }
 
 # target name : MeshFormat enumerator
 ALL_TARGETS="auto:Auto obj:Obj off:Off stl-ascii:StlAscii stl-binary:StlBinary ply-ascii:PlyAscii ply-le:PlyBinaryLE ply-be:PlyBinaryBE"
