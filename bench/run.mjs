@@ -572,5 +572,6 @@ function writeResults(final) {
   const m = results.machine;
   const header = `# conformesh bench ${results.startedAt}${final ? '' : ' (partial: still running)'}\n\nMachine: ${m.cpuModel}, ${m.nproc} cores, ${fmt(m.memoryBytes / 2 ** 30)} GiB RAM, ${m.os}; load average at start ${m.loadAverageAtStart.map((x) => x.toFixed(2)).join(' ')}, at end ${m.loadAverageAtEnd.map((x) => x.toFixed(2)).join(' ')}. CGAL ${m.cgal}, gmsh ${m.gmsh}, ${m.gxx}. Commit ${m.gitCommit}${m.gitDirty ? ' (dirty)' : ''}. Options: ${JSON.stringify(results.options)}.\n\n`;
   writeFileSync(path.join(RESULTS, 'latest.md'), header + markdown.join('\n'));
+  writeFileSync(path.join(RESULTS, jsonName.replace(/\.json$/, '.md')), header + markdown.join('\n'));
   return jsonName;
 }
