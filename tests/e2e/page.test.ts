@@ -153,6 +153,18 @@ describe('demo page in headless Chromium', () => {
     it.todo('remesh fandisk in the page (min angle ≥ 30°, 3 views drawn, frame gap < 100 ms): this build of the package has no remesh binding');
   }
 
+  it('loads the bundled samples: spot.obj and the generated mounting plate', async () => {
+    for (const [value, name] of [['plate', 'mounting-plate.off'], ['spot', 'spot.obj']] as const) {
+      await page.selectOption('#sample', value);
+      await page.waitForFunction((n) => document.querySelector('[data-testid=mesh-name]')?.textContent?.startsWith(`${n}:`), name, { timeout: 30_000 });
+      expect(await waitState(['loaded', 'error'], 30_000)).toBe('loaded');
+      const s = await canvasStats('canvas-input', `sample-${value}`);
+      expect(s.variance).toBeGreaterThan(20);
+      expect(s.nonBackground).toBeGreaterThan(0.05);
+      await shot(`sample-${value}`);
+    }
+  });
+
   it('shows a readable error, with its code and what to do, for a corrupt file', async () => {
     await page.setInputFiles('#file-input', {
       name: 'corrupt.off',

@@ -122,7 +122,8 @@ export function mountingPlate(options: Partial<PlateOptions> = {}): { positions:
     const holes = pts.slice(1).map((h) => h.map(([x, y]) => new Vector2(x, y)));
     const ids = rings.flat();
     const flatPts = pts.flat();
-    for (const [a, b, c] of ShapeUtils.triangulateShape(contour, holes)) {
+    for (const tri of ShapeUtils.triangulateShape(contour, holes)) {
+      const a = tri[0]!, b = tri[1]!, c = tri[2]!;
       const pa = flatPts[a]!, pb = flatPts[b]!, pc = flatPts[c]!;
       const area = (pb[0] - pa[0]) * (pc[1] - pa[1]) - (pb[1] - pa[1]) * (pc[0] - pa[0]);
       if (area > 0 === up) triangles.push(ids[a]!, ids[b]!, ids[c]!);
