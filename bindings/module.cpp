@@ -1,11 +1,17 @@
-// conformesh — embind glue. Every exported function catches conformesh::Error (and anything
-// else) and turns it into a JS Error whose message starts with "CONFORMESH:<code>:<stage>:", which
-// the TypeScript facade turns into a ConformeshError.
+// conformesh — embind glue, core: the status and stage tables, version, heap statistics.
+//
+// One glue file per area (module.cpp core, mesh_io.cpp, topology.cpp, ...). Every exported
+// function that can fail returns {ok, value} / {ok: false, code, name, stage, message} through
+// bindings::guarded (binding_util.h); the TypeScript facade (bindings/src) turns failures into
+// ConformeshError. See docs/BINDINGS.md for how to bind a new library function.
 #include <emscripten/bind.h>
+#include <emscripten/heap.h>
 #include <emscripten/val.h>
+#include <malloc.h>
 
 #include <string>
 
+#include "binding_util.h"
 #include "conformesh.h"
 
 using namespace emscripten;
@@ -28,11 +34,38 @@ val statusTable() {
   return rows;
 }
 
+//! The stage table: [{stage, name}, ...] with the numeric value and the report name ("flatten").
+val stageTable() {
+  val rows = val::array();
+#define CONFORMESH_X(name, value, text)       \
+  {                                           \
+    val row = val::object();                  \
+    row.set("stage", value);                  \
+    row.set("name", std::string(text));       \
+    rows.call<void>("push", row);             \
+  }
+  CONFORMESH_STAGE_TABLE(CONFORMESH_X)
+#undef CONFORMESH_X
+  return rows;
+}
+
 std::string version() { return CONFORMESH_VERSION; }
+
+//! {used, heapSize}: bytes currently allocated by malloc, and the size of the WASM memory. For
+//! leak tests (the memory itself never shrinks; `used` must come back to where it was).
+val heapStats() {
+  struct mallinfo mi = mallinfo();
+  val out = val::object();
+  out.set("used", double(unsigned(mi.uordblks)));
+  out.set("heapSize", double(emscripten_get_heap_size()));
+  return out;
+}
 
 }  // namespace
 
 EMSCRIPTEN_BINDINGS(conformesh_core) {
   function("statusTable", &statusTable);
+  function("stageTable", &stageTable);
   function("version", &version);
+  function("heapStats", &heapStats);
 }

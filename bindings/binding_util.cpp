@@ -1,0 +1,54 @@
+#include "binding_util.h"
+
+namespace conformesh::bindings {
+
+using emscripten::val;
+
+val failure(Code code, Stage stage, const std::string& message) {
+  val out = val::object();
+  out.set("ok", false);
+  out.set("code", int(code));
+  out.set("name", std::string(codeName(code)));
+  out.set("stage", std::string(stageName(stage)));
+  out.set("message", message);
+  return out;
+}
+
+val stringArray(const std::vector<std::string>& strings) {
+  val out = val::array();
+  for (const std::string& s : strings) out.call<void>("push", s);
+  return out;
+}
+
+MeshBuffers meshFromJs(const val& positions, const val& triangles, const val& uvs) {
+  MeshBuffers mesh;
+  mesh.positions = vectorFromJs<double>(positions);
+  mesh.triangles = vectorFromJs<uint32_t>(triangles);
+  if (!uvs.isUndefined() && !uvs.isNull()) mesh.uvs = vectorFromJs<double>(uvs);
+  if (mesh.positions.size() % 3 != 0)
+    fail(Code::InvalidArgument, Stage::Api,
+         "positions has " + std::to_string(mesh.positions.size()) + " numbers, not a multiple of 3 (x y z per vertex)");
+  if (mesh.triangles.size() % 3 != 0)
+    fail(Code::InvalidArgument, Stage::Api,
+         "triangles has " + std::to_string(mesh.triangles.size()) + " indices, not a multiple of 3");
+  if (!mesh.uvs.empty() && mesh.uvs.size() != 2 * mesh.vertexCount())
+    fail(Code::InvalidArgument, Stage::Api,
+         "uvs has " + std::to_string(mesh.uvs.size()) + " numbers; expected 2 per vertex (" +
+             std::to_string(2 * mesh.vertexCount()) + ") or none");
+  return mesh;
+}
+
+val meshToJs(const MeshBuffers& mesh) {
+  val out = val::object();
+  out.set("positions", typedArrayCopy(mesh.positions));
+  out.set("triangles", typedArrayCopy(mesh.triangles));
+  if (!mesh.uvs.empty()) out.set("uvs", typedArrayCopy(mesh.uvs));
+  return out;
+}
+
+ProgressFn progressFromJs(const val& callback) {
+  if (callback.isUndefined() || callback.isNull()) return {};
+  return [callback](Stage stage, double fraction) { return callback(int(stage), fraction).as<bool>(); };
+}
+
+}  // namespace conformesh::bindings

@@ -1,0 +1,142 @@
+// The synchronous API over one module instance. Each function checks its arguments (a wrong
+// type is an InvalidArgument ConformeshError, never a crash inside the module), copies them into
+// the shapes the glue expects, calls the glue through callRaw, and returns plain JS values.
+import { callRaw, requireExport, type RawModule } from './raw.js';
+import { ConformeshError, invalidArgument, type StageName } from './status.js';
+import type {
+  Mesh,
+  MeshBytes,
+  MeshFormat,
+  MeshInfo,
+  MeshLike,
+  ReadMeshOptions,
+  ReadMeshResult,
+  StatusRow,
+  WriteMeshOptions,
+} from './types.js';
+
+/** The API bound to one module instance; every method is synchronous. Obtain it with `init()`. */
+export interface Conformesh {
+  /** Library version ("0.1.0"). */
+  readonly version: string;
+  /** Read a mesh file's bytes. `format` or options: see ReadMeshOptions. */
+  readMesh(bytes: MeshBytes, format?: MeshFormat | 'auto' | ReadMeshOptions): ReadMeshResult;
+  /** Write a mesh to file bytes in `format`. */
+  writeMesh(mesh: MeshLike, format: MeshFormat, options?: WriteMeshOptions): Uint8Array;
+  /** Validation and topology report. */
+  meshInfo(mesh: MeshLike): MeshInfo;
+  /** The C++ status table. */
+  statusTable(): StatusRow[];
+  /** Bytes allocated in the module's heap, and the WASM memory size (for leak checks). */
+  heapStats(): { used: number; heapSize: number };
+}
+
+const EMPTY_F64 = new Float64Array(0);
+
+function isArrayLike(x: unknown): x is ArrayLike<number> {
+  if (ArrayBuffer.isView(x)) return !(x instanceof DataView);
+  return Array.isArray(x);
+}
+
+/** Bytes of a file argument as a Uint8Array (views on the caller's memory, no copy). */
+export function toBytes(bytes: MeshBytes, stage: StageName = 'read'): Uint8Array {
+  if (bytes instanceof Uint8Array) return bytes;
+  if (typeof bytes === 'string') return new TextEncoder().encode(bytes);
+  if (bytes instanceof ArrayBuffer) return new Uint8Array(bytes);
+  if (ArrayBuffer.isView(bytes)) return new Uint8Array(bytes.buffer, bytes.byteOffset, bytes.byteLength);
+  throw invalidArgument('mesh bytes must be a Uint8Array, an ArrayBuffer, a typed array or a string', stage);
+}
+
+function toFloat64(name: string, x: unknown, stage: StageName): Float64Array {
+  if (x instanceof Float64Array) return x;
+  if (!isArrayLike(x)) throw invalidArgument(`${name} must be a Float64Array or an array of numbers`, stage);
+  return Float64Array.from(x, (v) => (typeof v === 'number' ? v : Number.NaN));
+}
+
+function toIndices(x: unknown, stage: StageName): Uint32Array {
+  if (x instanceof Uint32Array) return x;
+  if (!isArrayLike(x)) throw invalidArgument('triangles must be a Uint32Array or an array of vertex indices', stage);
+  const out = new Uint32Array(x.length);
+  for (let i = 0; i < x.length; ++i) {
+    const v = x[i];
+    if (typeof v !== 'number' || !Number.isInteger(v)) {
+      throw invalidArgument(`triangles[${i}] = ${String(v)} is not an integer vertex index`, stage);
+    }
+    if (v < 0 || v > 0xffffffff) {
+      throw new ConformeshError('IndexOutOfRange', stage, `triangles[${i}] = ${v} is not a valid vertex index`);
+    }
+    out[i] = v;
+  }
+  return out;
+}
+
+/** The mesh's arrays in the element types the glue expects (copied only when needed). */
+export function toMesh(mesh: unknown, stage: StageName = 'api'): Mesh {
+  if (typeof mesh !== 'object' || mesh === null) {
+    throw invalidArgument('mesh must be an object { positions, triangles, uvs? }', stage);
+  }
+  const m = mesh as Partial<MeshLike>;
+  const out: Mesh = {
+    positions: toFloat64('positions', m.positions, stage),
+    triangles: toIndices(m.triangles, stage),
+  };
+  if (m.uvs !== undefined && m.uvs !== null) out.uvs = toFloat64('uvs', m.uvs, stage);
+  return out;
+}
+
+function readOptions(format: unknown): ReadMeshOptions {
+  if (format === undefined || format === null) return {};
+  if (typeof format === 'string') return { format: format as MeshFormat };
+  if (typeof format === 'object') return format as ReadMeshOptions;
+  throw invalidArgument('readMesh: the second argument must be a format name or an options object', 'read');
+}
+
+/** Bind the API to a raw module instance. */
+export function bindApi(raw: RawModule): Conformesh {
+  const api: Conformesh = {
+    version: raw.version(),
+
+    readMesh(bytes, format) {
+      const data = toBytes(bytes);
+      const o = readOptions(format);
+      const weld = o.weldTolerance ?? 0;
+      if (typeof weld !== 'number') throw invalidArgument('weldTolerance must be a number', 'read');
+      const fn = requireExport(raw, 'readMesh');
+      const r = callRaw(raw, 'readMesh', 'read', () =>
+        fn(data, String(o.format ?? 'auto'), String(o.fileName ?? ''), weld, o.readUvs !== false),
+      );
+      const out: ReadMeshResult = {
+        positions: r.positions,
+        triangles: r.triangles,
+        format: r.format as MeshFormat,
+        warnings: r.warnings,
+      };
+      if (r.uvs) out.uvs = r.uvs;
+      return out;
+    },
+
+    writeMesh(mesh, format, options = {}) {
+      const m = toMesh(mesh, 'write');
+      if (typeof format !== 'string') throw invalidArgument('writeMesh: format must be a format name', 'write');
+      const fn = requireExport(raw, 'writeMesh');
+      return callRaw(raw, 'writeMesh', 'write', () =>
+        fn(m.positions, m.triangles, m.uvs ?? EMPTY_F64, format, options.writeUvs !== false),
+      );
+    },
+
+    meshInfo(mesh) {
+      const m = toMesh(mesh, 'validate');
+      const fn = requireExport(raw, 'meshInfo');
+      return callRaw(raw, 'meshInfo', 'validate', () => fn(m.positions, m.triangles)) as unknown as MeshInfo;
+    },
+
+    statusTable() {
+      return raw.statusTable();
+    },
+
+    heapStats() {
+      return raw.heapStats();
+    },
+  };
+  return Object.freeze(api);
+}

@@ -1,0 +1,57 @@
+// conformesh — public API of the npm package.
+//
+//   import { readMesh, writeMesh, meshInfo } from 'conformesh';     // async, loads the module lazily
+//   const cm = await init(); cm.readMesh(bytes);                       // or: synchronous after init()
+//   const remesher = createRemesher({ workers: 2 });                   // the same API in Web Workers
+//
+// Results are plain objects of typed arrays copied out of the WebAssembly heap: nothing to free.
+// Failures throw ConformeshError { code, value, stage, message }.
+import { bindApi, type Conformesh } from './api.js';
+import { loadRaw, type InitOptions } from './loader.js';
+import type { MeshBytes, MeshFormat, MeshInfo, MeshLike, ReadMeshOptions, ReadMeshResult, WriteMeshOptions } from './types.js';
+
+export type { Conformesh } from './api.js';
+export type { InitOptions } from './loader.js';
+export * from './types.js';
+export {
+  ConformeshError,
+  StatusCode,
+  Stage,
+  type ConformeshErrorData,
+  type ErrorCode,
+  type StageName,
+  type StatusCodeName,
+} from './status.js';
+export { createRemesher, type Remesher, type RemesherOptions, type CallOptions, type ProgressEvent } from './remesher.js';
+
+let api: Promise<Conformesh> | undefined;
+
+/**
+ * Load the WebAssembly module (once; later calls return the same instance) and return the
+ * synchronous API. Options apply to the first call only. Rejects with ConformeshError IoError
+ * when the .wasm cannot be loaded.
+ */
+export function init(options?: InitOptions): Promise<Conformesh> {
+  if (!api) {
+    api = loadRaw(options).then(bindApi, (e: unknown) => {
+      api = undefined;
+      throw e;
+    });
+  }
+  return api;
+}
+
+/** Read a mesh file's bytes (OBJ, OFF, STL ascii/binary, PLY ascii/binary). */
+export async function readMesh(bytes: MeshBytes, format?: MeshFormat | 'auto' | ReadMeshOptions): Promise<ReadMeshResult> {
+  return (await init()).readMesh(bytes, format);
+}
+
+/** Write a mesh to file bytes. */
+export async function writeMesh(mesh: MeshLike, format: MeshFormat, options?: WriteMeshOptions): Promise<Uint8Array> {
+  return (await init()).writeMesh(mesh, format, options);
+}
+
+/** Validation and topology report: vertices, faces, components, boundaryLoops, euler, genus, ... */
+export async function meshInfo(mesh: MeshLike): Promise<MeshInfo> {
+  return (await init()).meshInfo(mesh);
+}

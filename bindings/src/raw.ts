@@ -1,0 +1,93 @@
+// The raw Emscripten module (dist/conformesh.mjs + .wasm) as the facade sees it, and the one
+// place where its results become values or ConformeshErrors. Internal: not part of the public API.
+import { ConformeshError, isErrorCode, isStageName, type StageName } from './status.js';
+
+/** What every fallible glue function returns (bindings/binding_util.h, `guarded`). */
+export type RawResult<T> =
+  | { ok: true; value: T }
+  | { ok: false; code: number; name: string; stage: string; message: string };
+
+export interface RawMesh {
+  positions: Float64Array;
+  triangles: Uint32Array;
+  uvs?: Float64Array;
+}
+
+export interface RawStatusRow {
+  code: number;
+  name: string;
+  fatal: boolean;
+  meaning: string;
+}
+
+/** The embind exports (bindings/*.cpp). Functions of areas not built yet are absent. */
+export interface RawModule {
+  version(): string;
+  statusTable(): RawStatusRow[];
+  stageTable(): { stage: number; name: string }[];
+  heapStats(): { used: number; heapSize: number };
+  readMesh?(
+    bytes: Uint8Array,
+    format: string,
+    fileName: string,
+    weldTolerance: number,
+    readUvs: boolean,
+  ): RawResult<RawMesh & { format: string; warnings: string[] }>;
+  writeMesh?(
+    positions: Float64Array,
+    triangles: Uint32Array,
+    uvs: Float64Array,
+    format: string,
+    writeUvs: boolean,
+  ): RawResult<Uint8Array>;
+  meshInfo?(positions: Float64Array, triangles: Uint32Array): RawResult<Record<string, unknown>>;
+  stackSave(): number;
+  stackRestore(sp: number): void;
+  HEAP8: Int8Array;
+}
+
+/** Options accepted by the Emscripten factory (the subset we use). */
+export interface RawModuleOptions {
+  wasmBinary?: ArrayBuffer | Uint8Array;
+  instantiateWasm?: (
+    imports: WebAssembly.Imports,
+    receive: (instance: WebAssembly.Instance, module?: WebAssembly.Module) => void,
+  ) => object;
+  print?: (text: string) => void;
+  printErr?: (text: string) => void;
+}
+
+export type RawFactory = (options?: RawModuleOptions) => Promise<RawModule>;
+
+/**
+ * Call a glue function and unwrap its result. The stack pointer is saved and restored around the
+ * call, so even a JS exception thrown inside (an embind argument check, a bug) leaves the WASM
+ * stack as it was (Emscripten 3.1.6 leaks stack on every throw through WASM frames otherwise).
+ */
+export function callRaw<T>(raw: RawModule, name: string, stage: StageName, fn: () => RawResult<T>): T {
+  const sp = raw.stackSave();
+  let result: RawResult<T>;
+  try {
+    result = fn();
+  } catch (e) {
+    raw.stackRestore(sp);
+    if (e instanceof ConformeshError) throw e;
+    const message = e instanceof Error ? e.message : String(e);
+    throw new ConformeshError('InternalError', stage, `${name}: unexpected exception in the WebAssembly module: ${message}`);
+  }
+  if (result.ok) return result.value;
+  throw new ConformeshError(
+    isErrorCode(result.name) ? result.name : 'InternalError',
+    isStageName(result.stage) ? result.stage : stage,
+    result.message,
+  );
+}
+
+/** The glue function `name`, or an InternalError if this build of the module lacks it. */
+export function requireExport<K extends keyof RawModule>(raw: RawModule, name: K): NonNullable<RawModule[K]> {
+  const f = raw[name];
+  if (typeof f !== 'function') {
+    throw new ConformeshError('InternalError', 'api', `this build of the WebAssembly module has no '${String(name)}'`);
+  }
+  return (f as (...args: never[]) => unknown).bind(raw) as NonNullable<RawModule[K]>;
+}

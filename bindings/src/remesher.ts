@@ -1,0 +1,242 @@
+// createRemesher: the API running in workers (module Web Workers in browsers, worker_threads in
+// Node), so long calls never block the page. Protocol: protocol.ts.
+import { isNode } from './loader.js';
+import type { CallRequest, WorkerMethod, WorkerRequest, WorkerResponse } from './protocol.js';
+import { transferablesOf } from './protocol.js';
+import { ConformeshError, invalidArgument, type StageName } from './status.js';
+import type {
+  MeshBytes,
+  MeshFormat,
+  MeshInfo,
+  MeshLike,
+  ReadMeshOptions,
+  ReadMeshResult,
+  WriteMeshOptions,
+} from './types.js';
+import { toBytes, toMesh } from './api.js';
+
+/** A progress report: stage and fraction in [0, 1], monotone within a call, ending at 1. */
+export interface ProgressEvent {
+  stage: StageName;
+  fraction: number;
+}
+
+/** Per-call options of the worker API. */
+export interface CallOptions {
+  /** Aborting rejects the call with ConformeshError 'Cancelled' (a running call's worker is terminated). */
+  signal?: AbortSignal;
+  onProgress?: (event: ProgressEvent) => void;
+  /**
+   * Transfer the input arrays' buffers to the worker instead of copying them (faster for big
+   * meshes; the caller's arrays become empty). Default false.
+   */
+  transfer?: boolean;
+}
+
+/** Something that behaves like a Worker: a Web Worker or Node's worker_threads Worker. */
+export interface WorkerLike {
+  postMessage(message: unknown, transfer?: Transferable[]): void;
+  terminate(): unknown;
+  addEventListener?(type: 'message' | 'error', listener: (ev: { data?: unknown; message?: string }) => void): void;
+  on?(type: 'message' | 'error', listener: (value: unknown) => void): void;
+}
+
+export interface RemesherOptions {
+  /** Number of workers (default 1). Calls are spread over idle workers. */
+  workers?: number;
+  /**
+   * Create a worker. Default: `new Worker(new URL('./worker.js', import.meta.url), {type: 'module'})`
+   * in browsers, a worker_threads Worker running node-worker.js in Node.
+   */
+  createWorker?: () => WorkerLike | Promise<WorkerLike>;
+  /** Passed to each worker's module loader (e.g. a compiled WebAssembly.Module to skip compiling). */
+  init?: { wasmModule?: WebAssembly.Module; wasmBinary?: ArrayBuffer | Uint8Array; wasmUrl?: string };
+}
+
+/** The package API, asynchronous, running in workers. Call terminate() when done. */
+export interface Remesher {
+  readonly workers: number;
+  readMesh(bytes: MeshBytes, format?: MeshFormat | 'auto' | ReadMeshOptions, call?: CallOptions): Promise<ReadMeshResult>;
+  writeMesh(mesh: MeshLike, format: MeshFormat, options?: WriteMeshOptions, call?: CallOptions): Promise<Uint8Array>;
+  meshInfo(mesh: MeshLike, call?: CallOptions): Promise<MeshInfo>;
+  version(): Promise<string>;
+  /** Stop every worker; pending calls reject with 'Cancelled'. */
+  terminate(): void;
+}
+
+async function defaultWorker(): Promise<WorkerLike> {
+  if (isNode()) {
+    const { Worker } = await import('node:worker_threads');
+    // Not a literal `new URL('…', import.meta.url)`: bundlers must not pick up the Node entry.
+    const entry = ['node-worker', 'js'].join('.');
+    return new Worker(new URL(entry, import.meta.url)) as unknown as WorkerLike;
+  }
+  return new Worker(new URL('./worker.js', import.meta.url), { type: 'module' });
+}
+
+interface Job {
+  id: number;
+  method: WorkerMethod;
+  args: unknown[];
+  transfer: Transferable[];
+  options: CallOptions;
+  resolve: (value: unknown) => void;
+  reject: (error: unknown) => void;
+  onAbort?: () => void;
+}
+
+interface Slot {
+  worker: Promise<WorkerLike> | undefined;
+  job: Job | undefined;
+}
+
+function cancelled(): ConformeshError {
+  return new ConformeshError('Cancelled', 'api', 'the call was cancelled');
+}
+
+/** Start a pool of workers serving the API. */
+export function createRemesher(options: RemesherOptions = {}): Remesher {
+  const count = options.workers ?? 1;
+  if (!Number.isInteger(count) || count < 1 || count > 64) throw invalidArgument('workers must be an integer in [1, 64]');
+  const create = options.createWorker ?? defaultWorker;
+  const slots: Slot[] = Array.from({ length: count }, () => ({ worker: undefined, job: undefined }));
+  const queue: Job[] = [];
+  let nextId = 1;
+  let terminated = false;
+
+  const finish = (slot: Slot, job: Job) => {
+    if (job.onAbort) job.options.signal?.removeEventListener('abort', job.onAbort);
+    if (slot.job === job) slot.job = undefined;
+    pump();
+  };
+
+  const kill = (slot: Slot) => {
+    const w = slot.worker;
+    slot.worker = undefined;
+    void w?.then((x) => x.terminate(), () => {});
+  };
+
+  const onMessage = (slot: Slot, data: unknown) => {
+    const msg = data as WorkerResponse;
+    const job = slot.job;
+    if (!job || msg.id !== job.id) return;
+    if (msg.type === 'progress') {
+      try {
+        job.options.onProgress?.({ stage: msg.stage, fraction: msg.fraction });
+      } catch {
+        // a throwing progress listener must not break the pool
+      }
+    } else if (msg.type === 'result') {
+      finish(slot, job);
+      job.resolve(msg.value);
+    } else if (msg.type === 'error') {
+      finish(slot, job);
+      job.reject(ConformeshError.fromData(msg.error));
+    }
+  };
+
+  const onFailure = (slot: Slot, what: unknown) => {
+    const job = slot.job;
+    kill(slot);
+    if (job) {
+      finish(slot, job);
+      const message = (what as { message?: string })?.message ?? String(what);
+      job.reject(new ConformeshError('InternalError', 'api', `worker failed: ${message}`));
+    }
+  };
+
+  const startWorker = (slot: Slot): Promise<WorkerLike> => {
+    const w = Promise.resolve().then(create).then((worker) => {
+      if (worker.addEventListener) {
+        worker.addEventListener('message', (ev) => onMessage(slot, ev.data));
+        worker.addEventListener('error', (ev) => onFailure(slot, ev));
+      } else if (worker.on) {
+        worker.on('message', (value) => onMessage(slot, value));
+        worker.on('error', (err) => onFailure(slot, err));
+      } else {
+        throw new Error('createWorker returned an object without addEventListener or on');
+      }
+      if (options.init) worker.postMessage({ id: 0, type: 'init', options: options.init } satisfies WorkerRequest);
+      return worker;
+    });
+    return w;
+  };
+
+  const pump = () => {
+    for (const slot of slots) {
+      if (terminated || queue.length === 0) return;
+      if (slot.job) continue;
+      const job = queue.shift()!;
+      slot.job = job;
+      slot.worker ??= startWorker(slot);
+      slot.worker.then(
+        (worker) => {
+          if (slot.job !== job) return;
+          const request: CallRequest = { id: job.id, type: 'call', method: job.method, args: job.args };
+          worker.postMessage(request, job.transfer);
+        },
+        (e: unknown) => onFailure(slot, e),
+      );
+    }
+  };
+
+  const submit = (method: WorkerMethod, args: unknown[], call: CallOptions = {}): Promise<unknown> => {
+    if (terminated) return Promise.reject(new ConformeshError('Cancelled', 'api', 'the remesher was terminated'));
+    if (call.signal?.aborted) return Promise.reject(cancelled());
+    return new Promise((resolve, reject) => {
+      const job: Job = {
+        id: nextId++,
+        method,
+        args,
+        transfer: call.transfer ? transferablesOf(args) : [],
+        options: call,
+        resolve,
+        reject,
+      };
+      if (call.signal) {
+        job.onAbort = () => {
+          const queued = queue.indexOf(job);
+          if (queued >= 0) {
+            queue.splice(queued, 1);
+          } else {
+            const slot = slots.find((s) => s.job === job);
+            if (!slot) return;
+            kill(slot); // the WASM call cannot be interrupted: drop the worker, start a new one later
+            slot.job = undefined;
+          }
+          call.signal!.removeEventListener('abort', job.onAbort!);
+          reject(cancelled());
+          pump();
+        };
+        call.signal.addEventListener('abort', job.onAbort);
+      }
+      queue.push(job);
+      pump();
+    });
+  };
+
+  return {
+    workers: count,
+    readMesh: async (bytes, format, call) => {
+      const data = toBytes(bytes);
+      return (await submit('readMesh', [data, format], call)) as ReadMeshResult;
+    },
+    writeMesh: async (mesh, format, options, call) =>
+      (await submit('writeMesh', [toMesh(mesh, 'write'), format, options], call)) as Uint8Array,
+    meshInfo: async (mesh, call) => (await submit('meshInfo', [toMesh(mesh, 'validate')], call)) as MeshInfo,
+    version: async () => (await submit('version', [])) as string,
+    terminate: () => {
+      if (terminated) return;
+      terminated = true;
+      for (const job of queue.splice(0)) job.reject(new ConformeshError('Cancelled', 'api', 'the remesher was terminated'));
+      for (const slot of slots) {
+        const job = slot.job;
+        kill(slot);
+        if (job) {
+          finish(slot, job);
+          job.reject(new ConformeshError('Cancelled', 'api', 'the remesher was terminated'));
+        }
+      }
+    },
+  };
+}

@@ -1,0 +1,107 @@
+// The status table as seen from JavaScript. The single definition is the C++ table
+// (src/core/status.h); this copy exists only so the TypeScript union of codes can be a type, and
+// tests/js/status.test.ts checks it row by row against the module's statusTable() export.
+
+/** Every status code by name, with its numeric value (same values as C++ `conformesh::Code`). */
+export const StatusCode = {
+  Ok: 0,
+  EmptyMesh: 1,
+  ParseError: 2,
+  IndexOutOfRange: 3,
+  NonFiniteCoordinate: 4,
+  DegenerateFace: 5,
+  NonManifoldEdge: 6,
+  NonManifoldVertex: 7,
+  InconsistentOrientation: 8,
+  TooLarge: 9,
+  InvalidArgument: 10,
+  Cancelled: 11,
+  IterationLimit: 12,
+  NotConverged: 13,
+  InvalidPslg: 14,
+  InvalidTopology: 15,
+  NumericalFailure: 16,
+  IoError: 17,
+  InternalError: 18,
+} as const;
+
+/** Name of a status code, e.g. `'ParseError'`. */
+export type StatusCodeName = keyof typeof StatusCode;
+/** Codes a ConformeshError can carry (every code but `Ok`). */
+export type ErrorCode = Exclude<StatusCodeName, 'Ok'>;
+
+/** Pipeline stages, by their report name (same as C++ `stageName`), with numeric values. */
+export const Stage = {
+  read: 0,
+  validate: 1,
+  segment: 2,
+  'curve-mesh': 3,
+  flatten: 4,
+  refine: 5,
+  lift: 6,
+  stitch: 7,
+  report: 8,
+  write: 9,
+  api: 10,
+} as const;
+
+/** Name of a pipeline stage, e.g. `'flatten'`. */
+export type StageName = keyof typeof Stage;
+
+const stageNames = Object.keys(Stage) as StageName[];
+
+/** Stage name for a numeric stage (progress callbacks receive numbers from C++). */
+export function stageName(value: number): StageName {
+  return stageNames.find((name) => Stage[name] === value) ?? 'api';
+}
+
+/** Structured form of a ConformeshError, safe to post between threads. */
+export interface ConformeshErrorData {
+  code: ErrorCode;
+  value: number;
+  stage: StageName;
+  message: string;
+}
+
+/**
+ * The one error type of the package. `code` is the status-table name (`'ParseError'`, ...),
+ * `value` its number, `stage` the pipeline stage it arose in; `message` says what and where.
+ */
+export class ConformeshError extends Error {
+  readonly code: ErrorCode;
+  readonly value: number;
+  readonly stage: StageName;
+
+  constructor(code: ErrorCode, stage: StageName, message: string) {
+    super(message);
+    this.name = 'ConformeshError';
+    this.code = code;
+    this.value = StatusCode[code];
+    this.stage = stage;
+  }
+
+  /** Plain data (for postMessage and JSON). */
+  toJSON(): ConformeshErrorData {
+    return { code: this.code, value: this.value, stage: this.stage, message: this.message };
+  }
+
+  /** Rebuild from toJSON() data (e.g. received from a worker). Unknown codes become InternalError. */
+  static fromData(data: Partial<ConformeshErrorData>): ConformeshError {
+    const code = isErrorCode(data.code) ? data.code : 'InternalError';
+    const stage = isStageName(data.stage) ? data.stage : 'api';
+    return new ConformeshError(code, stage, String(data.message ?? 'unknown error'));
+  }
+}
+
+export function isErrorCode(x: unknown): x is ErrorCode {
+  return typeof x === 'string' && x !== 'Ok' && Object.prototype.hasOwnProperty.call(StatusCode, x);
+}
+
+export function isStageName(x: unknown): x is StageName {
+  return typeof x === 'string' && Object.prototype.hasOwnProperty.call(Stage, x);
+}
+
+/** Shorthand for argument errors detected in the facade. */
+export function invalidArgument(message: string, stage: StageName = 'api'): ConformeshError {
+  return new ConformeshError('InvalidArgument', stage, message);
+}

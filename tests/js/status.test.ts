@@ -1,0 +1,29 @@
+import { describe, expect, it } from 'vitest';
+import { ConformeshError, init, Stage, StatusCode } from '../../dist/index.js';
+import { createRawInstance } from '../../dist/loader.js';
+
+// One table: C++ (src/core/status.h). The TypeScript union must agree with the module's export.
+describe('status table', () => {
+  it('the TypeScript StatusCode union equals the module statusTable(), name for name and value for value', async () => {
+    const cm = await init();
+    const table = cm.statusTable();
+    expect(table.length).toBeGreaterThan(10);
+    expect(Object.fromEntries(table.map((r) => [r.name, r.code]))).toEqual(StatusCode);
+  });
+
+  it('the TypeScript Stage names equal the module stageTable()', async () => {
+    const raw = await createRawInstance();
+    const stages = raw.stageTable();
+    expect(Object.fromEntries(stages.map((s) => [s.name, s.stage]))).toEqual(Stage);
+  });
+
+  it('ConformeshError carries code, numeric value, stage and message, and survives a JSON round trip', () => {
+    const e = new ConformeshError('ParseError', 'read', 'line 3: expected a number');
+    expect(e).toBeInstanceOf(Error);
+    expect(e.name).toBe('ConformeshError');
+    expect(e.value).toBe(StatusCode.ParseError);
+    const back = ConformeshError.fromData(JSON.parse(JSON.stringify(e)));
+    expect(back.toJSON()).toEqual(e.toJSON());
+    expect(ConformeshError.fromData({ code: 'Nope' as never, message: 'x' }).code).toBe('InternalError');
+  });
+});
