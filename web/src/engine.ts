@@ -102,6 +102,7 @@ function scalars(o: unknown): Record<string, number | string | boolean> {
     for (const [k, v] of Object.entries(x as Loose)) {
       const key = prefix ? `${prefix}.${k}` : k;
       if (typeof v === 'number' || typeof v === 'string' || typeof v === 'boolean') out[key] = v;
+      else if (Array.isArray(v)) out[`${key}.length`] = v.length;
       else if (depth < 2 && v && typeof v === 'object' && !Array.isArray(v)) visit(v, key, depth + 1);
     }
   };

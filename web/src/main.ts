@@ -294,8 +294,43 @@ function qualityTable(): void {
   if (o) {
     row('time', 'remesh time (worker)', '', `${o.seconds.toFixed(2)} s`);
     for (const [k, v] of Object.entries(o.result.report)) {
-      row(`report.${k}`, k, '', typeof v === 'number' ? (Number.isInteger(v) ? String(v) : v.toPrecision(4)) : String(v));
+      const [label, text] = reportRow(k, v);
+      row(`report.${k}`, label, '', text);
     }
+  }
+}
+
+// Labels and units of the library report's keys (others are shown as they come).
+const REPORT_LABELS: Record<string, [string, 'deg' | 'pct' | 'frac' | 'rel' | 's' | 'n']> = {
+  minAngle: ['library: min angle', 'deg'],
+  maxAngle: ['library: max angle', 'deg'],
+  meanMinAngle: ['library: mean min angle', 'deg'],
+  minAngleOutsideExempt: ['min angle away from exempt corners', 'deg'],
+  trianglesBelowBoundOutsideExempt: ['triangles below bound (not at exempt corners)', 'n'],
+  'exemptCorners.length': ['exempt corners (input angle < bound)', 'n'],
+  pctBelow20: ['library: angles < 20°', 'pct'],
+  pctBelow26: ['library: angles < 26°', 'pct'],
+  pctBelow30: ['library: angles < 30°', 'pct'],
+  delaunayFraction: ['Delaunay edges (3D)', 'frac'],
+  hausdorffRel: ['Hausdorff distance (× diagonal)', 'rel'],
+  maxDistanceToInputRel: ['max vertex distance to input (× diag.)', 'rel'],
+  meanEdgeLength: ['mean edge length', 'n'],
+  targetEdgeLength: ['target edge length', 'n'],
+};
+
+function reportRow(key: string, v: number | string | boolean): [string, string] {
+  const known = REPORT_LABELS[key];
+  const secs = key.startsWith('seconds.');
+  const label = known?.[0] ?? (secs ? `time: ${key.slice(8)}` : key);
+  if (typeof v !== 'number') return [label, String(v)];
+  const unit = known?.[1] ?? (secs ? 's' : 'n');
+  switch (unit) {
+    case 'deg': return [label, `${v.toFixed(2)}°`];
+    case 'pct': return [label, `${v.toFixed(2)}%`];
+    case 'frac': return [label, `${(100 * v).toFixed(2)}%`];
+    case 'rel': return [label, v < 0 ? 'not computed' : v.toExponential(2)];
+    case 's': return [label, `${v.toFixed(3)} s`];
+    default: return [label, Number.isInteger(v) ? String(v) : v.toPrecision(4)];
   }
 }
 
