@@ -169,7 +169,7 @@ describe('demo page in headless Chromium', () => {
     await page.setInputFiles('#file-input', {
       name: 'corrupt.off',
       mimeType: 'application/octet-stream',
-      buffer: Buffer.from('OFF\n4 2 0\n0 0 0\n1 0 zebra\n'),
+      buffer: Buffer.from('OFF\n3 1 0\n0 0 0\n1 0 zebra\n0 1 0\n3 0 1 2\n'),
     });
     expect(await waitState(['error'], 30_000)).toBe('error');
     const box = page.locator('[data-testid=error]');
@@ -177,6 +177,7 @@ describe('demo page in headless Chromium', () => {
     expect(await page.textContent('[data-testid=error-code]')).toBe('ParseError');
     const text = (await box.textContent()) ?? '';
     expect(text).toMatch(/corrupt\.off/);
+    expect(text).toMatch(/line 4/);
     expect(text).toMatch(/re-export/);
     await shot('corrupt-file');
     // the previous mesh is still shown, and nothing escaped as an uncaught exception

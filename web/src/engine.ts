@@ -176,8 +176,10 @@ export class Engine {
   async flatten(mesh: Mesh3, params: Params, diagonal: number, signal: AbortSignal): Promise<FlattenOutput> {
     if (!this.canFlatten) throw new ConformeshError('InternalError', 'api', 'flatten is not available in this build');
     const fn = (this.remesher as unknown as Loose).flatten as (m: MeshLike, o: unknown, c: unknown) => Promise<unknown>;
-    const raw = (await fn.call(this.remesher, mesh, this.options(params, diagonal), { signal })) as Loose;
-    const out: FlattenOutput = { patches: patchesOf(pick(raw, 'patches') ?? [raw]) };
+    const raw = (await fn.call(this.remesher, mesh, { boundary: params.boundary }, { signal })) as Loose;
+    // one patch (flatten works on a disk): uv and u per input vertex, over the input triangles
+    const list = (pick(raw, 'patches') as unknown[] | undefined) ?? [{ triangles: mesh.triangles, ...raw }];
+    const out: FlattenOutput = { patches: patchesOf(list) };
     const ipf = u32(pick(raw, 'patchOfFace', 'inputPatchOfFace', 'facePatch'));
     if (ipf) out.inputPatchOfFace = ipf;
     return out;

@@ -11,7 +11,8 @@ const HINTS: Record<string, string> = {
   NonManifoldEdge: 'An edge is shared by more than two triangles. Repair the mesh (split the non-manifold edges or remove the extra faces).',
   NonManifoldVertex: 'Two surface sheets touch at a single vertex. Split that vertex or separate the sheets.',
   InconsistentOrientation: 'The triangles are not consistently oriented. Recompute normals / make the orientation consistent.',
-  TooLarge: 'The mesh is larger than this page handles. Decimate it first or use the native CLI.',
+  TooLarge:
+    'The file declares more vertices or faces than it holds, or more than the limits allow: it may be truncated (re-export it) or too big for the page (decimate it first, or use the native CLI).',
   InvalidArgument: 'A parameter is out of range. Check the values in the parameter panel.',
   Cancelled: 'The run was cancelled.',
   IterationLimit: 'An iteration cap was hit. Try a larger target edge length, a smaller minimum angle, or a larger feature angle.',

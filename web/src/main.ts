@@ -184,7 +184,7 @@ function buildFlat(): void {
     } else if (output) {
       showUnavailable('#flat-unavailable', 'This build\u2019s remesh result carries no planar patches to show.');
     } else {
-      showUnavailable('#flat-unavailable', input ? (engine.canFlatten ? 'Flattening…' : 'Run Remesh to see the flattened patches.') : undefined);
+      showUnavailable('#flat-unavailable', input ? 'Run Remesh to see every patch flattened.' : undefined);
     }
     legend();
     return;
@@ -434,7 +434,9 @@ async function load(bytes: Uint8Array, name: string): Promise<void> {
     selected = undefined;
     $('#mesh-name').textContent = `${name}: ${mesh.positions.length / 3} vertices, ${mesh.triangles.length / 3} triangles` +
       (info ? `, genus ${info.genus}, ${info.boundaryLoops} boundary loops, ${info.components} component(s)` : '') +
-      (read.warnings.length ? ` — warnings: ${read.warnings.join('; ')}` : '');
+      (read.warnings.length ? ` — reader: ${read.warnings.join('; ')}` : '');
+    const findings = (info?.warnings ?? []).map((w) => (typeof w === 'string' ? w : (w as { message: string }).message));
+    notice(findings.length ? `Topology findings (the remesher repairs or rejects these): ${findings.join('; ')}` : undefined);
     resetProgress();
     buildInput(true);
     buildFlat();
@@ -444,7 +446,9 @@ async function load(bytes: Uint8Array, name: string): Promise<void> {
     legend();
     updateButtons();
     setState('loaded');
-    if (engine.canFlatten) void flattenInput(seq);
+    // flatten() maps one disk-like patch; other inputs get their patches' domains from Remesh
+    const disk = info && info.components === 1 && info.boundaryLoops >= 1 && info.genus === 0 && info.nonManifoldEdges === 0;
+    if (engine.canFlatten && disk) void flattenInput(seq);
   } catch (e) {
     if (seq !== loadSeq) return;
     showError(errorBox, e, `reading ${name}`);
