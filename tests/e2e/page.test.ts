@@ -130,6 +130,14 @@ describe('demo page in headless Chromium', () => {
   });
 
   if (HAS_REMESH) {
+    it('cancels a running remesh from the Cancel button', async () => {
+      await page.click('[data-testid=remesh]');
+      await page.waitForFunction(() => document.body.dataset.state === 'remeshing', undefined, { timeout: 10_000 });
+      await page.click('[data-testid=cancel]');
+      expect(await waitState(['loaded', 'error', 'remeshed'], 10_000)).toBe('loaded');
+      expect(await page.textContent('[data-testid=notice]')).toMatch(/cancelled/i);
+    });
+
     it('remeshes fandisk in the worker: min angle ≥ 30°, three views drawn, main thread never blocked > 100 ms', async () => {
       await page.click('[data-testid=remesh]');
       const state = await waitState(['remeshed', 'error'], 100_000);
@@ -148,6 +156,10 @@ describe('demo page in headless Chromium', () => {
         expect(s.nonBackground, `${id} drawn share`).toBeGreaterThan(0.05);
       }
       await shot('remeshed');
+      // the exported OBJ is the remesh the table describes
+      const [download] = await Promise.all([page.waitForEvent('download'), page.click('#export button[data-format=obj]')]);
+      const exported = await readMesh(await readFile(await download.path()), 'obj');
+      expect(exported.triangles.length / 3).toBe(triangles);
     });
   } else {
     it.todo('remesh fandisk in the page (min angle ≥ 30°, 3 views drawn, frame gap < 100 ms): this build of the package has no remesh binding');
