@@ -1,5 +1,7 @@
 #include "binding_util.h"
 
+#include <cmath>
+
 namespace conformesh::bindings {
 
 using emscripten::val;
@@ -44,6 +46,32 @@ val meshToJs(const MeshBuffers& mesh) {
   out.set("triangles", typedArrayCopy(mesh.triangles));
   if (!mesh.uvs.empty()) out.set("uvs", typedArrayCopy(mesh.uvs));
   return out;
+}
+
+namespace {
+val field(const val& options, const char* name) {
+  if (options.isUndefined() || options.isNull()) return val::undefined();
+  return options[name];
+}
+}  // namespace
+
+double numberOption(const val& options, const char* name, double fallback, Stage stage, double min, double max) {
+  val v = field(options, name);
+  if (v.isUndefined() || v.isNull()) return fallback;
+  if (!v.isNumber()) fail(Code::InvalidArgument, stage, std::string("option ") + name + " must be a number");
+  double d = v.as<double>();
+  if (!std::isfinite(d) || d < min || d > max)
+    fail(Code::InvalidArgument, stage,
+         std::string("option ") + name + " = " + std::to_string(d) + " is out of range [" + std::to_string(min) +
+             ", " + std::to_string(max) + "]");
+  return d;
+}
+
+bool boolOption(const val& options, const char* name, bool fallback, Stage stage) {
+  val v = field(options, name);
+  if (v.isUndefined() || v.isNull()) return fallback;
+  if (!v.isTrue() && !v.isFalse()) fail(Code::InvalidArgument, stage, std::string("option ") + name + " must be true or false");
+  return v.isTrue();
 }
 
 ProgressFn progressFromJs(const val& callback) {

@@ -75,6 +75,13 @@ MeshBuffers meshFromJs(const emscripten::val& positions, const emscripten::val& 
 //! {positions: Float64Array, triangles: Uint32Array, uvs?: Float64Array} (copies).
 emscripten::val meshToJs(const MeshBuffers& mesh);
 
+//! Option `name` of a JS options object (undefined/null object or field: `fallback`). Throws
+//! Error(InvalidArgument, stage) when the field has the wrong type or, for numbers, is not finite
+//! or outside [min, max]. The facade passes plain objects with known keys only.
+double numberOption(const emscripten::val& options, const char* name, double fallback, Stage stage,
+                    double min = -1e308, double max = 1e308);
+bool boolOption(const emscripten::val& options, const char* name, bool fallback, Stage stage);
+
 //! Wrap a JS function (stage: number, fraction: number) => boolean as a ProgressFn; undefined or
 //! null gives an empty ProgressFn. The JS function must not throw (the facade's wrapper catches
 //! and returns false, which cancels): a JS exception unwinding through C++ frames would skip

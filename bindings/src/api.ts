@@ -12,6 +12,8 @@ import type {
   ReadMeshOptions,
   ReadMeshResult,
   StatusRow,
+  ValidateOptions,
+  ValidateResult,
   WriteMeshOptions,
 } from './types.js';
 
@@ -23,8 +25,10 @@ export interface Conformesh {
   readMesh(bytes: MeshBytes, format?: MeshFormat | 'auto' | ReadMeshOptions): ReadMeshResult;
   /** Write a mesh to file bytes in `format`. */
   writeMesh(mesh: MeshLike, format: MeshFormat, options?: WriteMeshOptions): Uint8Array;
-  /** Validation and topology report. */
-  meshInfo(mesh: MeshLike): MeshInfo;
+  /** Topology report (counts; does not fail on non-manifold input). */
+  meshInfo(mesh: MeshLike, options?: Pick<ValidateOptions, 'maxVertices' | 'maxTriangles'>): MeshInfo;
+  /** Validate and repair: a consistently oriented manifold mesh, or a ConformeshError saying why not. */
+  validateMesh(mesh: MeshLike, options?: ValidateOptions): ValidateResult;
   /** The C++ status table. */
   statusTable(): StatusRow[];
   /** Bytes allocated in the module's heap, and the WASM memory size (for leak checks). */
@@ -84,6 +88,30 @@ export function toMesh(mesh: unknown, stage: StageName = 'api'): Mesh {
   return out;
 }
 
+const validateKeys: (keyof ValidateOptions)[] = [
+  'maxVertices',
+  'maxTriangles',
+  'dropZeroAreaFaces',
+  'dropDuplicateFaces',
+  'fixOrientation',
+  'splitNonManifoldVertices',
+];
+
+/**
+ * A plain copy of the known option keys (the glue reads fields of the object it gets; getters or
+ * proxies must not run inside a WASM call). Values are type-checked in C++ (InvalidArgument).
+ */
+export function pickOptions<T extends object>(options: T | undefined, keys: (keyof T)[], stage: StageName): Partial<T> {
+  if (options === undefined || options === null) return {};
+  if (typeof options !== 'object') throw invalidArgument('options must be an object', stage);
+  const out: Partial<T> = {};
+  for (const k of keys) {
+    const v = options[k];
+    if (v !== undefined) out[k] = typeof v === 'object' || typeof v === 'function' ? (String(v) as never) : v;
+  }
+  return out;
+}
+
 function readOptions(format: unknown): ReadMeshOptions {
   if (format === undefined || format === null) return {};
   if (typeof format === 'string') return { format: format as MeshFormat };
@@ -124,10 +152,18 @@ export function bindApi(raw: RawModule): Conformesh {
       );
     },
 
-    meshInfo(mesh) {
+    meshInfo(mesh, options) {
       const m = toMesh(mesh, 'validate');
+      const o = pickOptions(options, ['maxVertices', 'maxTriangles'], 'validate');
       const fn = requireExport(raw, 'meshInfo');
-      return callRaw(raw, 'meshInfo', 'validate', () => fn(m.positions, m.triangles)) as unknown as MeshInfo;
+      return callRaw(raw, 'meshInfo', 'validate', () => fn(m.positions, m.triangles, o));
+    },
+
+    validateMesh(mesh, options) {
+      const m = toMesh(mesh, 'validate');
+      const o = pickOptions(options, validateKeys, 'validate');
+      const fn = requireExport(raw, 'validateMesh');
+      return callRaw(raw, 'validateMesh', 'validate', () => fn(m.positions, m.triangles, m.uvs ?? EMPTY_F64, o));
     },
 
     statusTable() {

@@ -54,9 +54,10 @@ function formatG(v: number, precision: number): string {
   return strip(v.toFixed(precision - 1 - exp));
 }
 
-/** A number as the native CLI prints it (jsonNumber in src/cli/cli_util.cpp): %.*g with the fewest digits that round-trip; null if not finite. */
+/** A number as the native CLI prints it (jsonNumber in src/cli/cli_util.cpp): integers as integers, others %.*g with the fewest digits that round-trip; null if not finite. */
 export function jsonNumber(v: number): string {
   if (!Number.isFinite(v)) return 'null';
+  if (Number.isInteger(v) && Math.abs(v) < 2 ** 53) return (v === 0 ? 0 : v).toFixed(0);
   let s = formatG(v, 17);
   for (let p = 1; p <= 17; ++p) {
     s = formatG(v, p);
@@ -100,7 +101,7 @@ const commands: Record<string, Command> = {
       if (args.positional.length !== 1) throw new ConformeshError('InvalidArgument', 'api', 'info needs exactly one FILE');
       const mesh = await readInput(args.positional[0]!, api);
       const info = api.meshInfo(mesh);
-      const warnings = [...mesh.warnings, ...info.warnings];
+      const warnings = [...mesh.warnings, ...info.warnings.map((w) => w.message)];
       if (args.flags.has('--json')) {
         const fields = infoKeys.map((k) => `${JSON.stringify(k)}:${jsonNumber(info[k] as number)}`);
         fields.push(`"warnings":[${warnings.map((w) => JSON.stringify(w)).join(',')}]`);

@@ -1,6 +1,6 @@
 // conformesh — public API of the npm package.
 //
-//   import { readMesh, writeMesh, meshInfo } from 'conformesh';     // async, loads the module lazily
+//   import { readMesh, writeMesh, meshInfo, validateMesh } from 'conformesh';  // async, lazy module load
 //   const cm = await init(); cm.readMesh(bytes);                       // or: synchronous after init()
 //   const remesher = createRemesher({ workers: 2 });                   // the same API in Web Workers
 //
@@ -8,7 +8,17 @@
 // Failures throw ConformeshError { code, value, stage, message }.
 import { bindApi, type Conformesh } from './api.js';
 import { loadRaw, type InitOptions } from './loader.js';
-import type { MeshBytes, MeshFormat, MeshInfo, MeshLike, ReadMeshOptions, ReadMeshResult, WriteMeshOptions } from './types.js';
+import type {
+  MeshBytes,
+  MeshFormat,
+  MeshInfo,
+  MeshLike,
+  ReadMeshOptions,
+  ReadMeshResult,
+  ValidateOptions,
+  ValidateResult,
+  WriteMeshOptions,
+} from './types.js';
 
 export type { Conformesh } from './api.js';
 export type { InitOptions } from './loader.js';
@@ -51,7 +61,12 @@ export async function writeMesh(mesh: MeshLike, format: MeshFormat, options?: Wr
   return (await init()).writeMesh(mesh, format, options);
 }
 
-/** Validation and topology report: vertices, faces, components, boundaryLoops, euler, genus, ... */
-export async function meshInfo(mesh: MeshLike): Promise<MeshInfo> {
-  return (await init()).meshInfo(mesh);
+/** Topology report: vertices, faces, components, boundaryLoops, euler, genus, ... (never fails on non-manifold input). */
+export async function meshInfo(mesh: MeshLike, options?: Pick<ValidateOptions, 'maxVertices' | 'maxTriangles'>): Promise<MeshInfo> {
+  return (await init()).meshInfo(mesh, options);
+}
+
+/** Validate and repair a mesh (see ValidateOptions): the repaired mesh and what was done, or a ConformeshError. */
+export async function validateMesh(mesh: MeshLike, options?: ValidateOptions): Promise<ValidateResult> {
+  return (await init()).validateMesh(mesh, options);
 }

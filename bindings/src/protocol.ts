@@ -9,7 +9,7 @@
 import type { ConformeshErrorData, StageName } from './status.js';
 
 /** Methods a worker serves (the names of the Conformesh API functions). */
-export type WorkerMethod = 'readMesh' | 'writeMesh' | 'meshInfo' | 'version';
+export type WorkerMethod = 'readMesh' | 'writeMesh' | 'meshInfo' | 'validateMesh' | 'version';
 
 export interface InitRequest {
   id: number;

@@ -1,6 +1,7 @@
 // The raw Emscripten module (dist/conformesh.mjs + .wasm) as the facade sees it, and the one
 // place where its results become values or ConformeshErrors. Internal: not part of the public API.
 import { ConformeshError, isErrorCode, isStageName, type StageName } from './status.js';
+import type { MeshInfo, ValidateResult } from './types.js';
 
 /** What every fallible glue function returns (bindings/binding_util.h, `guarded`). */
 export type RawResult<T> =
@@ -40,7 +41,8 @@ export interface RawModule {
     format: string,
     writeUvs: boolean,
   ): RawResult<Uint8Array>;
-  meshInfo?(positions: Float64Array, triangles: Uint32Array): RawResult<Record<string, unknown>>;
+  meshInfo?(positions: Float64Array, triangles: Uint32Array, options: object): RawResult<MeshInfo>;
+  validateMesh?(positions: Float64Array, triangles: Uint32Array, uvs: Float64Array, options: object): RawResult<ValidateResult>;
   stackSave(): number;
   stackRestore(sp: number): void;
   HEAP8: Int8Array;

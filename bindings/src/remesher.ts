@@ -11,6 +11,8 @@ import type {
   MeshLike,
   ReadMeshOptions,
   ReadMeshResult,
+  ValidateOptions,
+  ValidateResult,
   WriteMeshOptions,
 } from './types.js';
 import { toBytes, toMesh } from './api.js';
@@ -58,7 +60,8 @@ export interface Remesher {
   readonly workers: number;
   readMesh(bytes: MeshBytes, format?: MeshFormat | 'auto' | ReadMeshOptions, call?: CallOptions): Promise<ReadMeshResult>;
   writeMesh(mesh: MeshLike, format: MeshFormat, options?: WriteMeshOptions, call?: CallOptions): Promise<Uint8Array>;
-  meshInfo(mesh: MeshLike, call?: CallOptions): Promise<MeshInfo>;
+  meshInfo(mesh: MeshLike, options?: Pick<ValidateOptions, 'maxVertices' | 'maxTriangles'>, call?: CallOptions): Promise<MeshInfo>;
+  validateMesh(mesh: MeshLike, options?: ValidateOptions, call?: CallOptions): Promise<ValidateResult>;
   version(): Promise<string>;
   /** Stop every worker; pending calls reject with 'Cancelled'. */
   terminate(): void;
@@ -223,7 +226,10 @@ export function createRemesher(options: RemesherOptions = {}): Remesher {
     },
     writeMesh: async (mesh, format, options, call) =>
       (await submit('writeMesh', [toMesh(mesh, 'write'), format, options], call)) as Uint8Array,
-    meshInfo: async (mesh, call) => (await submit('meshInfo', [toMesh(mesh, 'validate')], call)) as MeshInfo,
+    meshInfo: async (mesh, options, call) =>
+      (await submit('meshInfo', [toMesh(mesh, 'validate'), options], call)) as MeshInfo,
+    validateMesh: async (mesh, options, call) =>
+      (await submit('validateMesh', [toMesh(mesh, 'validate'), options], call)) as ValidateResult,
     version: async () => (await submit('version', [])) as string,
     terminate: () => {
       if (terminated) return;

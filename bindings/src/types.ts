@@ -1,4 +1,5 @@
 // Public data types of the package.
+import type { StatusCodeName } from './status.js';
 
 /**
  * A triangle mesh as flat arrays (GL style; maps one-to-one onto three.js BufferAttributes).
@@ -51,17 +52,71 @@ export interface WriteMeshOptions {
   writeUvs?: boolean;
 }
 
-/** Validation and topology report; the same keys as `conformesh info --json`. */
+/** A non-fatal finding: the status it stands for (or 'Ok' for a note), how many elements, a message. */
+export interface MeshWarning {
+  code: StatusCodeName;
+  count: number;
+  message: string;
+}
+
+/**
+ * Topology report (what `conformesh info --json` prints). Never fails on non-manifold or badly
+ * oriented input: it counts what it finds. Degenerate triangles are counted and left out of the
+ * rest; `genus` = (2·components − euler − boundaryLoops) / 2, fractional when not a manifold.
+ */
 export interface MeshInfo {
   vertices: number;
   faces: number;
+  edges: number;
   components: number;
   boundaryLoops: number;
   euler: number;
   genus: number;
   nonManifoldEdges: number;
+  nonManifoldVertices: number;
   degenerateFaces: number;
-  warnings: string[];
+  duplicateFaces: number;
+  inconsistentFaces: number;
+  warnings: MeshWarning[];
+}
+
+/** How validateMesh repairs (and the size limits meshInfo also applies). */
+export interface ValidateOptions {
+  /** More vertices fail with TooLarge; default 16 M (16·2^20). */
+  maxVertices?: number;
+  /** More triangles fail with TooLarge; default 16 M. */
+  maxTriangles?: number;
+  /** Drop exactly-zero-area triangles (default true); repeated-vertex triangles are always dropped. */
+  dropZeroAreaFaces?: boolean;
+  /** Drop duplicate triangles instead of failing with NonManifoldEdge (default false). */
+  dropDuplicateFaces?: boolean;
+  /** Make the orientation consistent (default true); false: InconsistentOrientation is an error. */
+  fixOrientation?: boolean;
+  /** Give each extra fan of a bow-tie vertex its own vertex instead of failing (default false). */
+  splitNonManifoldVertices?: boolean;
+}
+
+/** What validateMesh repaired. */
+export interface ValidationReport {
+  inputVertices: number;
+  inputTriangles: number;
+  degenerateFaces: number;
+  zeroAreaFaces: number;
+  duplicateFaces: number;
+  flippedFaces: number;
+  splitVertices: number;
+  removedVertices: number;
+  warnings: MeshWarning[];
+}
+
+export interface ValidateResult {
+  /** The repaired mesh (a consistently oriented manifold). */
+  mesh: Mesh;
+  report: ValidationReport;
+  /** For each output vertex, its input vertex. */
+  vertexToInput: Uint32Array;
+  /** For each output triangle, its input triangle. */
+  faceToInput: Uint32Array;
 }
 
 /** One row of the status table (the C++ table, exported by the module). */

@@ -25,8 +25,13 @@ const methods: Record<WorkerMethod, MethodImpl> = {
     progress('write', 1);
     return r;
   },
-  meshInfo: (api, [mesh], progress) => {
-    const r: MeshInfo = api.meshInfo(mesh as never);
+  meshInfo: (api, [mesh, options], progress) => {
+    const r: MeshInfo = api.meshInfo(mesh as never, options as never);
+    progress('validate', 1);
+    return r;
+  },
+  validateMesh: (api, [mesh, options], progress) => {
+    const r = api.validateMesh(mesh as never, options as never);
     progress('validate', 1);
     return r;
   },

@@ -99,6 +99,11 @@ std::string jsonString(const std::string& s) {
 std::string jsonNumber(double v) {
   if (!std::isfinite(v)) return "null";
   char buf[40];
+  // Integers print as integers ("9000", not %g's "9e+03").
+  if (v == std::floor(v) && std::fabs(v) < 9007199254740992.0) {
+    std::snprintf(buf, sizeof buf, "%.0f", v == 0 ? 0.0 : v);
+    return buf;
+  }
   for (int prec = 1; prec <= 17; ++prec) {
     std::snprintf(buf, sizeof buf, "%.*g", prec, v);
     if (std::strtod(buf, nullptr) == v) break;

@@ -1,6 +1,5 @@
 import { describe, expect, it } from 'vitest';
-import { ConformeshError, init, meshInfo, readMesh, writeMesh, type MeshFormat } from '../../dist/index.js';
-import { createRawInstance } from '../../dist/loader.js';
+import { ConformeshError, init, meshInfo, readMesh, validateMesh, writeMesh, type MeshFormat } from '../../dist/index.js';
 import { dataFile } from './helpers.js';
 
 const tetra = {
@@ -80,10 +79,7 @@ describe('writeMesh', () => {
   });
 });
 
-// meshInfo is bound when the topology module (src/mesh/topology.h) is in the build.
-const hasMeshInfo = typeof (await createRawInstance()).meshInfo === 'function';
-
-describe.skipIf(!hasMeshInfo)('meshInfo', () => {
+describe('meshInfo', () => {
   it('reports vertices, faces, components, boundary loops, Euler characteristic and genus (spot: closed genus 0)', async () => {
     const cm = await init();
     const m = cm.readMesh(dataFile('spot.obj'));
@@ -101,6 +97,44 @@ describe.skipIf(!hasMeshInfo)('meshInfo', () => {
     expect([t.euler, t.genus, t.boundaryLoops]).toEqual([2, 0, 0]);
     const d = await meshInfo({ positions: [0, 0, 0, 1, 0, 0, 0, 1, 0], triangles: [0, 1, 2] });
     expect([d.euler, d.genus, d.boundaryLoops]).toEqual([1, 0, 1]);
+  });
+
+  it('counts instead of failing on a non-manifold edge (three triangles on one edge)', async () => {
+    const info = await meshInfo({
+      positions: [0, 0, 0, 1, 0, 0, 0, 1, 0, 0, -1, 0, 0, 0, 1],
+      triangles: [0, 1, 2, 1, 0, 3, 0, 1, 4],
+    });
+    expect(info.nonManifoldEdges).toBe(1);
+    expect(info.warnings.length).toBeGreaterThan(0);
+  });
+});
+
+describe('validateMesh', () => {
+  it('returns a repaired mesh: a flipped face of a tetrahedron reoriented, a degenerate face dropped, with the report', async () => {
+    const triangles = Uint32Array.from(tetra.triangles);
+    [triangles[3], triangles[4]] = [triangles[4]!, triangles[3]!]; // flip face 1
+    const withDegenerate = { positions: tetra.positions, triangles: Uint32Array.from([...triangles, 0, 1, 1]) };
+    const { mesh, report, faceToInput, vertexToInput } = await validateMesh(withDegenerate);
+    expect(mesh.triangles.length).toBe(12);
+    expect(report.flippedFaces).toBe(1);
+    expect(report.degenerateFaces).toBe(1);
+    expect(report.warnings.map((w) => w.code).sort()).toEqual(['DegenerateFace', 'InconsistentOrientation']);
+    expect(Array.from(faceToInput)).toEqual([0, 1, 2, 3]);
+    expect(Array.from(vertexToInput)).toEqual([0, 1, 2, 3]);
+    // Consistent orientation: every directed edge appears once.
+    const directed = new Set<string>();
+    for (let t = 0; t < 4; ++t) for (let k = 0; k < 3; ++k) directed.add(`${mesh.triangles[3 * t + k]}-${mesh.triangles[3 * t + ((k + 1) % 3)]}`);
+    expect(directed.size).toBe(12);
+    const info = await meshInfo(mesh);
+    expect(info.inconsistentFaces).toBe(0);
+  });
+
+  it('keeps a valid mesh (spot) as it is', async () => {
+    const m = await readMesh(dataFile('spot.obj'));
+    const v = await validateMesh(m);
+    expect(v.mesh.positions).toEqual(m.positions);
+    expect(v.mesh.triangles).toEqual(m.triangles);
+    expect(v.report.flippedFaces + v.report.degenerateFaces + v.report.removedVertices).toBe(0);
   });
 });
 

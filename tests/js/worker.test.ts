@@ -55,6 +55,8 @@ describe('createRemesher (real workers: worker_threads in Node)', () => {
     expect(viaWorker.format).toBe(direct.format);
     expect(await remesher.writeMesh(direct, 'ply')).toEqual(cm.writeMesh(direct, 'ply'));
     expect(await remesher.version()).toBe(cm.version);
+    expect(await remesher.meshInfo(direct)).toEqual(cm.meshInfo(direct));
+    expect(await remesher.validateMesh(direct)).toEqual(cm.validateMesh(direct));
   });
 
   it('spreads concurrent calls over the workers and reports progress monotone in [0, 1], ending at 1', async () => {
