@@ -1,5 +1,5 @@
 import { describe, expect, it } from 'vitest';
-import { readMesh } from '../../dist/index.js';
+import { meshInfo, readMesh } from '../../dist/index.js';
 import { mountingPlate, mountingPlateOff } from '../../web/src/plate.ts';
 
 // The generated CAD sample of the demo page must be a clean solid: the remesher's input contract.
@@ -35,6 +35,11 @@ describe('demo sample: mounting plate', () => {
     const box = 80 * 50 * 8;
     expect(vol).toBeGreaterThan(0.8 * box);
     expect(vol).toBeLessThan(box);
+  });
+
+  it('is what the library topology report says: closed, manifold, consistently oriented, genus 5', async () => {
+    const info = await meshInfo(mountingPlate());
+    expect(info).toMatchObject({ components: 1, boundaryLoops: 0, genus: 5, nonManifoldEdges: 0, nonManifoldVertices: 0, inconsistentFaces: 0, duplicateFaces: 0 });
   });
 
   it('round-trips through the library reader as OFF', async () => {
