@@ -35,7 +35,7 @@ export class Viewport {
   private readonly raycaster = new Raycaster();
 
   constructor(readonly container: HTMLElement, readonly mode: '3d' | '2d') {
-    this.renderer = new WebGLRenderer({ antialias: true, preserveDrawingBuffer: true });
+    this.renderer = new WebGLRenderer({ antialias: true });
     this.renderer.setPixelRatio(Math.min(2, window.devicePixelRatio || 1));
     this.renderer.setClearColor(new Color(0x171a20));
     container.appendChild(this.renderer.domElement);
