@@ -150,6 +150,8 @@ describe('demo page in headless Chromium', () => {
       console.log(`remesh in page: ${JSON.stringify(timing)}`);
       expect(timing.frames).toBeGreaterThan(0);
       expect(timing.maxFrameGapMs).toBeLessThan(100);
+      const flatMissing = await page.isVisible('#flat-unavailable');
+      expect(flatMissing, `flattened-domain view not drawn: ${await page.textContent('#flat-unavailable')}`).toBe(false);
       for (const [id, name] of [['canvas-input', 'input-view'], ['canvas-flat', 'flat-view'], ['canvas-remesh', 'remesh-view']] as const) {
         const s = await canvasStats(id, `remeshed-${name}`);
         expect(s.variance, `${id} variance`).toBeGreaterThan(20);
