@@ -106,19 +106,18 @@ export function featurePreview(mesh: MeshLike, featureAngle: number): FeaturePre
   const t = mesh.triangles;
   const nF = t.length / 3;
   const nV = mesh.positions.length / 3;
+  const nH = 3 * nF;
   const normals = faceNormals(mesh);
   const cosLimit = Math.cos((featureAngle * Math.PI) / 180);
-  // edge -> faces, keyed by min*nV+max (exact in a double for nV < 2^26)
-  const edgeFaces = new Map<number, number[]>();
-  for (let f = 0; f < nF; ++f) {
-    for (let k = 0; k < 3; ++k) {
-      const a = t[3 * f + k]!, b = t[3 * f + ((k + 1) % 3)]!;
-      const key = a < b ? a * nV + b : b * nV + a;
-      const list = edgeFaces.get(key);
-      if (list) list.push(f);
-      else edgeFaces.set(key, [f]);
-    }
-  }
+  // half-edges h = 3f + k run from t[h] to t[next(h)]; bucket them by their start vertex (CSR)
+  const next = (h: number) => (h % 3 === 2 ? h - 2 : h + 1);
+  const start = new Uint32Array(nV + 1);
+  for (let h = 0; h < nH; ++h) start[t[h]! + 1]!++;
+  for (let v = 0; v < nV; ++v) start[v + 1]! += start[v]!;
+  const fill = start.slice(0, nV);
+  const out = new Uint32Array(nH);
+  for (let h = 0; h < nH; ++h) out[fill[t[h]!]!++] = h;
+
   const parent = new Uint32Array(nF);
   for (let f = 0; f < nF; ++f) parent[f] = f;
   const find = (x: number): number => {
@@ -129,10 +128,30 @@ export function featurePreview(mesh: MeshLike, featureAngle: number): FeaturePre
     return x;
   };
   const feature: number[] = [];
-  for (const [key, faces] of edgeFaces) {
-    let sharp = faces.length !== 2;
+  const around: number[] = [];
+  for (let h = 0; h < nH; ++h) {
+    const a = t[h]!, b = t[next(h)]!;
+    // every half-edge on the undirected edge {a, b}; handle the edge at its smallest half-edge
+    around.length = 0;
+    let first = true;
+    for (let i = start[a]!; i < start[a + 1]! && first; ++i) {
+      const g = out[i]!;
+      if (t[next(g)] === b) {
+        if (g < h) first = false;
+        around.push(g);
+      }
+    }
+    for (let i = start[b]!; i < start[b + 1]! && first; ++i) {
+      const g = out[i]!;
+      if (t[next(g)] === a) {
+        if (g < h) first = false;
+        around.push(g);
+      }
+    }
+    if (!first) continue;
+    let sharp = around.length !== 2;
     if (!sharp) {
-      const f = faces[0]!, g = faces[1]!;
+      const f = Math.floor(around[0]! / 3), g = Math.floor(around[1]! / 3);
       const dot = normals[3 * f]! * normals[3 * g]! + normals[3 * f + 1]! * normals[3 * g + 1]! + normals[3 * f + 2]! * normals[3 * g + 2]!;
       sharp = dot < cosLimit;
       if (!sharp) {
@@ -140,18 +159,15 @@ export function featurePreview(mesh: MeshLike, featureAngle: number): FeaturePre
         if (rf !== rg) parent[rf] = rg;
       }
     }
-    if (sharp) feature.push(Math.floor(key / nV), key % nV);
+    if (sharp) feature.push(a, b);
   }
   const patchOfFace = new Uint32Array(nF);
-  const ids = new Map<number, number>();
+  const ids = new Int32Array(nF).fill(-1);
+  let count = 0;
   for (let f = 0; f < nF; ++f) {
     const r = find(f);
-    let id = ids.get(r);
-    if (id === undefined) {
-      id = ids.size;
-      ids.set(r, id);
-    }
-    patchOfFace[f] = id;
+    if (ids[r]! < 0) ids[r] = count++;
+    patchOfFace[f] = ids[r]!;
   }
-  return { featureEdges: Uint32Array.from(feature), patchOfFace, patchCount: ids.size };
+  return { featureEdges: Uint32Array.from(feature), patchOfFace, patchCount: count };
 }

@@ -53,6 +53,7 @@ let libraryPatchOfFace: Uint32Array | undefined;
 let selected: number | undefined;
 let running: AbortController | undefined;
 let loadSeq = 0;
+const lastLoad = { analysisMs: NaN, buildMs: NaN, firstFrameMs: NaN };
 const lastRemesh = { maxFrameGapMs: NaN, frames: 0, seconds: NaN, applyMs: NaN };
 
 const params: Params = { minAngle: 30, edgeLength: 0.02, featureAngle: 40, chordTolerance: 0.001, boundary: 'corners' };
@@ -160,12 +161,17 @@ function buildInput(frame: boolean): void {
     inputFeatures.visible = toggles.features;
     inputView.scene.add(inputFeatures);
   }
-  inputWire = wireframe(input.mesh, 0x101215, 0.5);
-  inputWire.visible = toggles.inputWire;
-  inputView.scene.add(inputWire);
+  if (toggles.inputWire) ensureInputWire();
   paintInput();
   if (frame) inputView.frame([inputMesh]);
   inputView.requestRender();
+}
+
+/** The input wireframe is built on first use (it costs as much as the mesh itself). */
+function ensureInputWire(): void {
+  if (inputWire || !input) return;
+  inputWire = wireframe(input.mesh, 0x101215, 0.5);
+  inputView.scene.add(inputWire);
 }
 
 function showUnavailable(id: string, text: string | undefined): void {
@@ -418,6 +424,7 @@ async function load(bytes: Uint8Array, name: string): Promise<void> {
       if (!(e instanceof Error && /has no 'meshInfo'/.test(e.message))) throw e;
     }
     if (seq !== loadSeq) return;
+    const tGeo = performance.now();
     const angles = triangleAngles(mesh);
     input = {
       name,
@@ -438,6 +445,7 @@ async function load(bytes: Uint8Array, name: string): Promise<void> {
     const findings = (info?.warnings ?? []).map((w) => (typeof w === 'string' ? w : (w as { message: string }).message));
     notice(findings.length ? `Topology findings (the remesher repairs or rejects these): ${findings.join('; ')}` : undefined);
     resetProgress();
+    const tBuild = performance.now();
     buildInput(true);
     buildFlat();
     buildRemesh();
@@ -445,6 +453,11 @@ async function load(bytes: Uint8Array, name: string): Promise<void> {
     histogram();
     legend();
     updateButtons();
+    const tEnd = performance.now();
+    requestAnimationFrame(() => {
+      const tFrame = performance.now();
+      Object.assign(lastLoad, { analysisMs: tBuild - tGeo, buildMs: tEnd - tBuild, firstFrameMs: tFrame - tEnd });
+    });
     setState('loaded');
     // flatten() maps one disk-like patch; other inputs get their patches' domains from Remesh
     const disk = info && info.components === 1 && info.boundaryLoops >= 1 && info.genus === 0 && info.nonManifoldEdges === 0;
@@ -629,7 +642,11 @@ const bindToggle = (id: string, key: keyof typeof toggles, apply: () => void) =>
 };
 bindToggle('#show-features', 'features', () => { if (inputFeatures) inputFeatures.visible = toggles.features; inputView.requestRender(); });
 bindToggle('#show-patches', 'patches', () => paintInput());
-bindToggle('#show-input-wire', 'inputWire', () => { if (inputWire) inputWire.visible = toggles.inputWire; inputView.requestRender(); });
+bindToggle('#show-input-wire', 'inputWire', () => {
+  if (toggles.inputWire) ensureInputWire();
+  if (inputWire) inputWire.visible = toggles.inputWire;
+  inputView.requestRender();
+});
 bindToggle('#show-layout', 'layout', () => { for (const l of flat?.layoutLines ?? []) l.visible = toggles.layout; flatView.requestRender(); });
 bindToggle('#show-refined', 'refined', () => { for (const l of flat?.refinedLines ?? []) l.visible = toggles.refined; flatView.requestRender(); });
 bindToggle('#show-remesh-wire', 'remeshWire', () => { if (remeshWire) remeshWire.visible = toggles.remeshWire; remeshView.requestRender(); });
@@ -653,6 +670,7 @@ declare global {
 window.conformeshPage = {
   probe,
   lastRemesh,
+  lastLoad,
   capabilities: { remesh: engine.canRemesh, flatten: engine.canFlatten },
   renderAll: () => views.forEach((v) => v.renderNow()),
   loadSample,

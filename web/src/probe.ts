@@ -8,7 +8,9 @@ export class FrameProbe {
   private last = 0;
 
   constructor() {
-    const tick = (t: number) => {
+    const tick = () => {
+      // performance.now(), not the rAF timestamp: the frame time of a late frame can predate the block
+      const t = performance.now();
       if (this.last > 0) this.maxGap = Math.max(this.maxGap, t - this.last);
       this.last = t;
       this.frames++;
