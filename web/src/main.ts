@@ -5,7 +5,8 @@ import type { LineSegments, Mesh } from 'three';
 import type { MeshInfo } from 'conformesh';
 import { Engine, type FlatPatch, type Mesh3, type Params, type RemeshOutput } from './engine.ts';
 import { clearError, showError } from './errors.ts';
-import { angleStats, bounds, featurePreview, minAnglePerTriangle, triangleAngles, type AngleStats, type Bounds, type FeaturePreview } from './geometry.ts';
+import { Analyzer } from './analysis.ts';
+import { minAnglePerTriangle, type AngleStats, type Bounds, type FeaturePreview } from './geometry.ts';
 import { drawHistogram } from './histogram.ts';
 import { mountingPlateOff } from './plate.ts';
 import { FrameProbe } from './probe.ts';
@@ -28,6 +29,7 @@ const $ = <T extends HTMLElement = HTMLElement>(sel: string) => document.querySe
 const errorBox = $('#error');
 const noticeBox = $('#notice');
 const probe = new FrameProbe();
+const analyzer = new Analyzer();
 
 // ---------------------------------------------------------------- state
 interface Input {
@@ -425,14 +427,15 @@ async function load(bytes: Uint8Array, name: string): Promise<void> {
     }
     if (seq !== loadSeq) return;
     const tGeo = performance.now();
-    const angles = triangleAngles(mesh);
+    const a = await analyzer.analyze(mesh, { angles: true, featureAngle: params.featureAngle });
+    if (seq !== loadSeq) return;
     input = {
       name,
       mesh,
-      bounds: bounds(mesh.positions),
-      angles,
-      stats: angleStats(angles),
-      preview: featurePreview(mesh, params.featureAngle),
+      bounds: a.bounds,
+      angles: a.angles!,
+      stats: a.stats!,
+      preview: a.preview!,
       ...(info ? { info } : {}),
     };
     output = undefined;
@@ -529,9 +532,10 @@ async function remesh(): Promise<void> {
     const seconds = (performance.now() - t0) / 1000;
     const gap = probe.read();
     if (seq !== loadSeq) return;
+    const a = await analyzer.analyze(result.mesh, { angles: true });
+    if (seq !== loadSeq) return;
     const t1 = performance.now();
-    const angles = triangleAngles(result.mesh);
-    output = { result, angles, minAngles: minAnglePerTriangle(angles), stats: angleStats(angles), seconds };
+    output = { result, angles: a.angles!, minAngles: minAnglePerTriangle(a.angles!), stats: a.stats!, seconds };
     if (result.inputPatchOfFace) libraryPatchOfFace = result.inputPatchOfFace;
     selected = undefined;
     STAGES.forEach((s) => setProgress(s, 1));
@@ -593,12 +597,19 @@ async function exportAs(format: string): Promise<void> {
 const gui = new GUI({ container: $('#params'), title: 'Parameters' });
 gui.add(params, 'minAngle', 5, 34, 0.5).name('min angle (°)').onChange(() => { histogram(); qualityTable(); });
 gui.add(params, 'edgeLength', 0.002, 0.2, 0.001).name('edge length (× diagonal)');
-gui.add(params, 'featureAngle', 5, 120, 1).name('feature angle (°)').onFinishChange(() => {
-  if (!input || libraryPatchOfFace) return;
-  input.preview = featurePreview(input.mesh, params.featureAngle);
-  selected = undefined;
-  buildInput(false);
-  legend();
+gui.add(params, 'featureAngle', 5, 120, 1).name('feature angle (°)').onFinishChange(async () => {
+  const current = input;
+  if (!current || libraryPatchOfFace) return;
+  try {
+    const a = await analyzer.analyze(current.mesh, { angles: false, featureAngle: params.featureAngle });
+    if (current !== input || !a.preview) return;
+    current.preview = a.preview;
+    selected = undefined;
+    buildInput(false);
+    legend();
+  } catch (e) {
+    showError(errorBox, e, 'updating the feature preview');
+  }
 });
 gui.add(params, 'chordTolerance', 0.0001, 0.01, 0.0001).name('chord tolerance (× diag.)');
 gui.add(params, 'boundary', { 'corner-preserving': 'corners', 'free (u = 0)': 'free', 'round disk': 'disk' }).name('boundary condition');
