@@ -10,6 +10,7 @@
 #include <malloc.h>
 
 #include <string>
+#include <vector>
 
 #include "binding_util.h"
 #include "conformesh.h"
@@ -61,6 +62,23 @@ val heapStats() {
   return out;
 }
 
+//! Self-test of the progress bridge every long-running binding uses (progressFromJs here,
+//! progress.ts in the facade): reports `steps` fractions i/steps (stage Api) and stops with
+//! Cancelled as soon as the callback returns false. Returns the number of reports made.
+val progressSelfTest(int steps, val callback) {
+  return bindings::guarded(Stage::Api, [&] {
+    if (steps < 1 || steps > 1000000) fail(Code::InvalidArgument, Stage::Api, "steps must be in [1, 1e6]");
+    ProgressFn progress = bindings::progressFromJs(callback);
+    std::vector<double> scratch(1024);  // something to free when cancelled
+    for (int i = 1; i <= steps; ++i) {
+      scratch[size_t(i) % scratch.size()] = i;
+      if (progress && !progress(Stage::Api, double(i) / steps))
+        fail(Code::Cancelled, Stage::Api, "cancelled by the progress callback at step " + std::to_string(i));
+    }
+    return val(steps);
+  });
+}
+
 }  // namespace
 
 EMSCRIPTEN_BINDINGS(conformesh_core) {
@@ -68,4 +86,5 @@ EMSCRIPTEN_BINDINGS(conformesh_core) {
   function("stageTable", &stageTable);
   function("version", &version);
   function("heapStats", &heapStats);
+  function("progressSelfTest", &progressSelfTest);
 }

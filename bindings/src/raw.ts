@@ -27,6 +27,7 @@ export interface RawModule {
   statusTable(): RawStatusRow[];
   stageTable(): { stage: number; name: string }[];
   heapStats(): { used: number; heapSize: number };
+  progressSelfTest(steps: number, progress: ((stage: number, fraction: number) => boolean) | undefined): RawResult<number>;
   readMesh?(
     bytes: Uint8Array,
     format: string,

@@ -40,7 +40,10 @@ export interface WorkerLike {
   postMessage(message: unknown, transfer?: Transferable[]): void;
   terminate(): unknown;
   addEventListener?(type: 'message' | 'error', listener: (ev: { data?: unknown; message?: string }) => void): void;
-  on?(type: 'message' | 'error', listener: (value: unknown) => void): void;
+  on?(type: 'message' | 'error' | 'exit', listener: (value: unknown) => void): void;
+  /** Node worker_threads: an idle worker is unref'd so it does not keep the process alive. */
+  ref?(): void;
+  unref?(): void;
 }
 
 export interface RemesherOptions {
@@ -55,7 +58,10 @@ export interface RemesherOptions {
   init?: { wasmModule?: WebAssembly.Module; wasmBinary?: ArrayBuffer | Uint8Array; wasmUrl?: string };
 }
 
-/** The package API, asynchronous, running in workers. Call terminate() when done. */
+/**
+ * The package API, asynchronous, running in workers. terminate() stops them (in Node, idle
+ * workers do not keep the process alive; in browsers they live until terminate() or page unload).
+ */
 export interface Remesher {
   readonly workers: number;
   readMesh(bytes: MeshBytes, format?: MeshFormat | 'auto' | ReadMeshOptions, call?: CallOptions): Promise<ReadMeshResult>;
@@ -72,7 +78,9 @@ async function defaultWorker(): Promise<WorkerLike> {
     const { Worker } = await import('node:worker_threads');
     // Not a literal `new URL('…', import.meta.url)`: bundlers must not pick up the Node entry.
     const entry = ['node-worker', 'js'].join('.');
-    return new Worker(new URL(entry, import.meta.url)) as unknown as WorkerLike;
+    // Workers inherit the parent's execArgv; --input-type (node -e scripts) is an error there.
+    const execArgv = process.execArgv.filter((a) => !a.startsWith('--input-type'));
+    return new Worker(new URL(entry, import.meta.url), { execArgv }) as unknown as WorkerLike;
   }
   return new Worker(new URL('./worker.js', import.meta.url), { type: 'module' });
 }
@@ -109,7 +117,10 @@ export function createRemesher(options: RemesherOptions = {}): Remesher {
 
   const finish = (slot: Slot, job: Job) => {
     if (job.onAbort) job.options.signal?.removeEventListener('abort', job.onAbort);
-    if (slot.job === job) slot.job = undefined;
+    if (slot.job === job) {
+      slot.job = undefined;
+      void slot.worker?.then((x) => x.unref?.(), () => {});
+    }
     pump();
   };
 
@@ -156,6 +167,10 @@ export function createRemesher(options: RemesherOptions = {}): Remesher {
       } else if (worker.on) {
         worker.on('message', (value) => onMessage(slot, value));
         worker.on('error', (err) => onFailure(slot, err));
+        worker.on('exit', (code) => {
+          if (slot.worker === w) onFailure(slot, new Error(`the worker exited (code ${String(code)})`));
+        });
+        worker.unref?.();
       } else {
         throw new Error('createWorker returned an object without addEventListener or on');
       }
@@ -176,7 +191,14 @@ export function createRemesher(options: RemesherOptions = {}): Remesher {
         (worker) => {
           if (slot.job !== job) return;
           const request: CallRequest = { id: job.id, type: 'call', method: job.method, args: job.args };
-          worker.postMessage(request, job.transfer);
+          worker.ref?.();
+          try {
+            worker.postMessage(request, job.transfer);
+          } catch (e) {
+            // e.g. an argument that cannot be cloned
+            finish(slot, job);
+            job.reject(new ConformeshError('InvalidArgument', 'api', `cannot send the call to the worker: ${(e as Error).message}`));
+          }
         },
         (e: unknown) => onFailure(slot, e),
       );

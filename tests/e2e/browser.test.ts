@@ -1,6 +1,6 @@
 // The packed package in a browser: a tiny page importing 'conformesh' from the installed tarball,
 // built with Vite, served over HTTP and opened in headless Chromium (playwright-core with the
-// Debian chromium); and the same page without a bundler. The page reads spot.obj on the main thread and in a module Web Worker
+// Debian chromium); the same page without a bundler, and under the Vite dev server. The page reads spot.obj on the main thread and in a module Web Worker
 // (createRemesher), and reports the result on window.__result.
 import { copyFileSync, mkdtempSync, rmSync, writeFileSync } from 'node:fs';
 import { readFile } from 'node:fs/promises';
@@ -10,7 +10,7 @@ import { tmpdir } from 'node:os';
 import { extname, join, normalize } from 'node:path';
 import { fileURLToPath } from 'node:url';
 import { chromium } from 'playwright-core';
-import { build } from 'vite';
+import { build, createServer as createViteServer, type ViteDevServer } from 'vite';
 import { afterAll, beforeAll, describe, expect, it } from 'vitest';
 import { packAndInstall } from '../js/pack.js';
 
@@ -91,7 +91,7 @@ describe('browser: Vite-built page using the installed package, in headless Chro
     rmSync(profile, { recursive: true, force: true });
   });
 
-  it.each(['out/index.html', 'plain.html'])('%s loads the module, reads spot.obj on the main thread and in a module worker', async (pagePath) => {
+  async function resultOf(pageUrl: string): Promise<unknown> {
     const context = await chromium.launchPersistentContext(profile, {
       executablePath: '/usr/bin/chromium',
       headless: true,
@@ -112,15 +112,32 @@ describe('browser: Vite-built page using the installed package, in headless Chro
       const p = await context.newPage();
       const errors: string[] = [];
       p.on('pageerror', (e) => errors.push(String(e)));
-      await p.goto(url + pagePath);
+      await p.goto(pageUrl);
       await p.waitForFunction(() => (window as unknown as { __result?: unknown }).__result !== undefined, null, {
         timeout: 60_000,
       });
       const result = await p.evaluate(() => (window as unknown as { __result: unknown }).__result);
       expect(errors).toEqual([]);
-      expect(result).toEqual({ nV: 2930, nF: 5856, stlF: 5856, workerF: 5856, workerSame: true, code: 'ParseError' });
+      return result;
     } finally {
       await context.close();
+    }
+  }
+
+  const expected = { nV: 2930, nF: 5856, stlF: 5856, workerF: 5856, workerSame: true, code: 'ParseError' };
+
+  it.each(['out/index.html', 'plain.html'])('%s loads the module, reads spot.obj on the main thread and in a module worker', async (pagePath) => {
+    expect(await resultOf(url + pagePath)).toEqual(expected);
+  });
+
+  it('the same page under the Vite dev server (default config, dependency pre-bundling on)', async () => {
+    let vite: ViteDevServer | undefined;
+    try {
+      vite = await createViteServer({ root: dir, configFile: false, logLevel: 'warn', server: { port: 0, host: '127.0.0.1' } });
+      await vite.listen();
+      expect(await resultOf(`${vite.resolvedUrls!.local[0]}index.html`)).toEqual(expected);
+    } finally {
+      await vite?.close();
     }
   });
 });

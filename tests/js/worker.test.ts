@@ -5,7 +5,11 @@ import { afterAll, describe, expect, it } from 'vitest';
 import { ConformeshError, createRemesher, init, type ProgressEvent } from '../../dist/index.js';
 import type { WorkerRequest, WorkerResponse } from '../../dist/protocol.js';
 import { createWorkerHandler } from '../../dist/worker.js';
-import { dataFile } from './helpers.js';
+import { execFileSync } from 'node:child_process';
+import { readFileSync } from 'node:fs';
+import { join } from 'node:path';
+import { pathToFileURL } from 'node:url';
+import { dataFile, root } from './helpers.js';
 
 async function ask(request: WorkerRequest) {
   const handle = createWorkerHandler();
@@ -108,5 +112,26 @@ describe('createRemesher (real workers: worker_threads in Node)', () => {
     r.terminate();
     expect(((await pending.catch((x: unknown) => x)) as ConformeshError).code).toBe('Cancelled');
     expect(((await r.version().catch((x: unknown) => x)) as ConformeshError).code).toBe('Cancelled');
+  });
+
+  it('idle Node workers do not keep the process alive (no terminate() needed to exit)', () => {
+    const script = `
+      import { createRemesher } from ${JSON.stringify(pathToFileURL(join(root, 'dist', 'index.js')).href)};
+      const r = createRemesher();
+      const m = await r.readMesh('v 0 0 0\\nv 1 0 0\\nv 0 1 0\\nf 1 2 3\\n', 'obj');
+      console.log(m.triangles.length);
+    `;
+    const out = execFileSync(process.execPath, ['--input-type=module', '-e', script], { encoding: 'utf8', timeout: 30_000 });
+    expect(out.trim()).toBe('3');
+  });
+
+  it('workers can share one compiled WebAssembly.Module (init: { wasmModule })', async () => {
+    const wasmModule = await WebAssembly.compile(readFileSync(join(root, 'dist', 'conformesh.wasm')));
+    const r = createRemesher({ init: { wasmModule } });
+    try {
+      expect((await r.readMesh(dataFile('spot.obj'))).triangles.length).toBe(3 * 5856);
+    } finally {
+      r.terminate();
+    }
   });
 });
