@@ -167,8 +167,8 @@ describe('demo page in headless Chromium', () => {
     it.todo('remesh fandisk in the page (min angle ≥ 30°, 3 views drawn, frame gap < 100 ms): this build of the package has no remesh binding');
   }
 
-  it('loads the bundled samples: spot.obj and the generated mounting plate', async () => {
-    for (const [value, name] of [['plate', 'mounting-plate.off'], ['spot', 'spot.obj']] as const) {
+  it('loads the bundled samples: spot.obj, the generated mounting plate, a binary STL', async () => {
+    for (const [value, name] of [['plate', 'mounting-plate.off'], ['box-with-hole.stl', 'box-with-hole.stl'], ['spot', 'spot.obj']] as const) {
       await page.selectOption('#sample', value);
       await page.waitForFunction((n) => document.querySelector('[data-testid=mesh-name]')?.textContent?.startsWith(`${n}:`), name, { timeout: 30_000 });
       expect(await waitState(['loaded', 'error'], 30_000)).toBe('loaded');
@@ -177,6 +177,11 @@ describe('demo page in headless Chromium', () => {
       expect(s.nonBackground).toBeGreaterThan(0.05);
       await shot(`sample-${value}`);
     }
+    // a mesh with topology problems loads, and the page says what the library found
+    await page.selectOption('#sample', 'needs-repair.obj');
+    await page.waitForFunction(() => document.querySelector('[data-testid=mesh-name]')?.textContent?.startsWith('needs-repair.obj:'), undefined, { timeout: 30_000 });
+    expect(await page.isVisible('[data-testid=notice]')).toBe(true);
+    expect(await page.textContent('[data-testid=notice]')).toMatch(/Topology findings/);
   });
 
   it('shows a readable error, with its code and what to do, for a corrupt file', async () => {

@@ -24,6 +24,11 @@ import {
   type FlatScene,
 } from './scenes.ts';
 import { Viewport } from './viewport.ts';
+import annulusUrl from '../samples/annulus.ply?url';
+import boxWithHoleUrl from '../samples/box-with-hole.stl?url';
+import diskUrl from '../samples/disk.obj?url';
+import needsRepairUrl from '../samples/needs-repair.obj?url';
+import torusUrl from '../samples/torus.off?url';
 
 const $ = <T extends HTMLElement = HTMLElement>(sel: string) => document.querySelector<T>(sel)!;
 const errorBox = $('#error');
@@ -499,9 +504,23 @@ async function loadFile(file: File): Promise<void> {
   }
 }
 
+// meshes made by `conformesh generate` (web/samples/README.md), emitted by Vite as assets
+const GENERATED: Record<string, string> = {
+  'box-with-hole.stl': boxWithHoleUrl,
+  'disk.obj': diskUrl,
+  'annulus.ply': annulusUrl,
+  'torus.off': torusUrl,
+  'needs-repair.obj': needsRepairUrl,
+};
+
 async function loadSample(which: string): Promise<void> {
   try {
-    if (which === 'spot') {
+    const generated = GENERATED[which];
+    if (generated) {
+      const res = await fetch(generated);
+      if (!res.ok) throw new Error(`cannot fetch the sample ${which}: HTTP ${res.status}`);
+      await load(new Uint8Array(await res.arrayBuffer()), which);
+    } else if (which === 'spot') {
       const res = await fetch('./samples/spot.obj');
       if (!res.ok) throw new Error(`cannot fetch samples/spot.obj: HTTP ${res.status}`);
       await load(new Uint8Array(await res.arrayBuffer()), 'spot.obj');
