@@ -1,5 +1,6 @@
 import { describe, expect, it } from 'vitest';
 import { meshInfo, readMesh } from '../../dist/index.js';
+import { featurePreview } from '../../web/src/geometry.ts';
 import { mountingPlate, mountingPlateOff } from '../../web/src/plate.ts';
 
 // The generated CAD sample of the demo page must be a clean solid: the remesher's input contract.
@@ -40,6 +41,15 @@ describe('demo sample: mounting plate', () => {
   it('is what the library topology report says: closed, manifold, consistently oriented, genus 5', async () => {
     const info = await meshInfo(mountingPlate());
     expect(info).toMatchObject({ components: 1, boundaryLoops: 0, genus: 5, nonManifoldEdges: 0, nonManifoldVertices: 0, inconsistentFaces: 0, duplicateFaces: 0 });
+  });
+
+  it('page feature preview: only the 90° bottom rims are sharp at 40°, so the bottom face is its own patch', () => {
+    const plate = mountingPlate();
+    const p = featurePreview(plate, 40);
+    expect(p.patchCount).toBe(2);
+    for (let i = 0; i < p.featureEdges.length; ++i) expect(plate.positions[3 * p.featureEdges[i]! + 2]).toBe(0);
+    // with a feature angle below one fillet step (90°/5 = 18°) every fillet ring is a feature too
+    expect(featurePreview(plate, 10).patchCount).toBeGreaterThan(2 + 6 * 4);
   });
 
   it('round-trips through the library reader as OFF', async () => {
