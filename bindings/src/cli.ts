@@ -6,7 +6,7 @@ import { readFile } from 'node:fs/promises';
 import type { Conformesh } from './api.js';
 import { init } from './index.js';
 import { ConformeshError, StatusCode } from './status.js';
-import type { MeshInfo } from './types.js';
+import type { MeshFormat } from './types.js';
 
 interface Args {
   positional: string[];
@@ -66,49 +66,112 @@ export function jsonNumber(v: number): string {
   return s;
 }
 
-function errorJson(e: ConformeshError): string {
-  return JSON.stringify({ error: { code: StatusCode[e.code], name: e.code, stage: e.stage, message: e.message } });
-}
-
-async function readInput(path: string, api: Conformesh) {
-  let bytes: Uint8Array;
-  try {
-    bytes = await readFile(path);
-  } catch (e) {
-    throw new ConformeshError('IoError', 'read', `cannot open '${path}': ${(e as Error).message}`);
+/** A JSON string literal escaped as the native CLI does (jsonString in src/cli/cli_util.cpp). */
+export function jsonString(text: string): string {
+  let out = '"';
+  for (const ch of text) {
+    const c = ch.codePointAt(0)!;
+    if (ch === '"') out += '\\"';
+    else if (ch === '\\') out += '\\\\';
+    else if (ch === '\n') out += '\\n';
+    else if (ch === '\r') out += '\\r';
+    else if (ch === '\t') out += '\\t';
+    else if (c < 0x20) out += `\\u${c.toString(16).padStart(4, '0')}`;
+    else out += ch;
   }
-  return api.readMesh(bytes, { fileName: path });
+  return out + '"';
 }
 
-const infoKeys: (keyof MeshInfo)[] = [
-  'vertices',
-  'faces',
-  'components',
-  'boundaryLoops',
-  'euler',
-  'genus',
-  'nonManifoldEdges',
-  'degenerateFaces',
-];
+function errorJson(e: ConformeshError): string {
+  return `{"error":{"code":${StatusCode[e.code]},"name":${jsonString(e.code)},"stage":${jsonString(e.stage)},"message":${jsonString(e.message)}}}`;
+}
+
+const strerror: Record<string, string> = {
+  ENOENT: 'No such file or directory',
+  EACCES: 'Permission denied',
+  EISDIR: 'Is a directory',
+  ENOTDIR: 'Not a directory',
+};
+
+/** readFileBytes of the native CLI: same IoError message. */
+async function readFileBytes(path: string): Promise<Uint8Array> {
+  try {
+    return await readFile(path);
+  } catch (e) {
+    const err = e as NodeJS.ErrnoException;
+    throw new ConformeshError('IoError', 'read', `cannot open '${path}': ${strerror[err.code ?? ''] ?? err.message}`);
+  }
+}
+
+/** Args.number of the native CLI. */
+function numberFlag(args: Args, name: string, fallback: number): number {
+  const v = args.flags.get(name);
+  if (v === undefined) return fallback;
+  const d = v.trim() === v && v !== '' ? Number(v) : Number.NaN;
+  if (!Number.isFinite(d)) throw new ConformeshError('InvalidArgument', 'api', `option ${name} needs a number, got '${v}'`);
+  return d;
+}
+
+const formatNames = ['obj', 'off', 'stl', 'stl-ascii', 'ply', 'ply-ascii', 'ply-be'];
+
+/** --format NAME as the native CLI takes it (a format name or an extension, any case). */
+function formatFlag(args: Args): MeshFormat | 'auto' | undefined {
+  const v = args.flags.get('--format');
+  if (v === undefined) return undefined;
+  const name = v.toLowerCase().replace(/^\./, '');
+  if (name === 'auto') return 'auto';
+  if (!formatNames.includes(name)) throw new ConformeshError('InvalidArgument', 'api', `unknown format '${v}'`);
+  return name as MeshFormat;
+}
+
+const infoUsage = 'info FILE [--json] [--weld TOL] [--format NAME]';
 
 const commands: Record<string, Command> = {
+  // src/cli/cmd_info.cpp
   info: {
-    usage: 'info FILE [--json]',
-    summary: 'read a mesh and print its validation and topology report',
-    valueFlags: [],
+    usage: infoUsage,
+    summary:
+      'validation and topology report: vertices, faces, components, boundary loops, Euler characteristic, genus, non-manifold edges, degenerate faces, warnings',
+    valueFlags: ['--weld', '--format'],
     switches: ['--json'],
     async run(args, api) {
-      if (args.positional.length !== 1) throw new ConformeshError('InvalidArgument', 'api', 'info needs exactly one FILE');
-      const mesh = await readInput(args.positional[0]!, api);
+      if (args.positional.length !== 1) throw new ConformeshError('InvalidArgument', 'api', `usage: conformesh ${infoUsage}`);
+      const path = args.positional[0]!;
+      const weldTolerance = numberFlag(args, '--weld', 0);
+      if (weldTolerance < 0) throw new ConformeshError('InvalidArgument', 'api', '--weld needs a tolerance >= 0');
+      const format = formatFlag(args);
+      const mesh = api.readMesh(await readFileBytes(path), { fileName: path, weldTolerance, ...(format ? { format } : {}) });
       const info = api.meshInfo(mesh);
-      const warnings = [...mesh.warnings, ...info.warnings.map((w) => w.message)];
+      const warnings = [
+        ...mesh.warnings.map((message) => ({ code: 'Ok', stage: 'read', message, count: 1 })),
+        ...info.warnings.map((w) => ({ code: w.code, stage: 'validate', message: w.message, count: w.count })),
+      ];
+      const rows: [string, string][] = [
+        ['vertices', jsonNumber(info.vertices)],
+        ['faces', jsonNumber(info.faces)],
+        ['components', jsonNumber(info.components)],
+        ['boundaryLoops', jsonNumber(info.boundaryLoops)],
+        ['euler', jsonNumber(info.euler)],
+        ['genus', jsonNumber(info.genus)],
+        ['nonManifoldEdges', jsonNumber(info.nonManifoldEdges)],
+        ['degenerateFaces', jsonNumber(info.degenerateFaces)],
+      ];
       if (args.flags.has('--json')) {
-        const fields = infoKeys.map((k) => `${JSON.stringify(k)}:${jsonNumber(info[k] as number)}`);
-        fields.push(`"warnings":[${warnings.map((w) => JSON.stringify(w)).join(',')}]`);
+        const ws = warnings.map(
+          (w) =>
+            `{"code":${jsonString(w.code)},"stage":${jsonString(w.stage)},"count":${jsonNumber(w.count)},"message":${jsonString(w.message)}}`,
+        );
+        const fields = rows.map(([k, v]) => `${jsonString(k)}:${v}`);
+        fields.push(`"warnings":[${ws.join(',')}]`);
         process.stdout.write(`{${fields.join(',')}}\n`);
       } else {
-        for (const k of infoKeys) process.stdout.write(`${k}: ${info[k]}\n`);
-        for (const w of warnings) process.stdout.write(`warning: ${w}\n`);
+        const table: [string, string][] = [
+          ['file', `${path} (${mesh.format})`],
+          ...rows,
+          ['warnings', String(warnings.length)],
+        ];
+        for (const [k, v] of table) process.stdout.write(`${k.padEnd(17)} ${v}\n`);
+        for (const w of warnings) process.stdout.write(`  - ${w.code} [${w.stage}]: ${w.message}\n`);
       }
       return 0;
     },

@@ -44,7 +44,7 @@ describe('package CLI', () => {
   });
 
   it('info FILE: a readable report; errors: exit 1 with {"error":{code,name,stage,message}} under --json', () => {
-    expect(run(['info', data('fertility.off')]).stdout).toMatch(/genus: 4/);
+    expect(run(['info', data('fertility.off')]).stdout).toMatch(/^genus +4$/m);
     const missing = run(['info', 'no-such-file.obj', '--json']);
     expect(missing.status).toBe(1);
     expect(JSON.parse(missing.stdout).error).toMatchObject({ code: 17, name: 'IoError', stage: 'read' });
@@ -55,11 +55,27 @@ describe('package CLI', () => {
     expect(run(['--help']).stdout).toMatch(/conformesh info FILE \[--json\]/);
   });
 
-  it.skipIf(!nativeHas('info'))('info --json prints exactly what the native CLI prints', () => {
-    for (const name of ['spot.obj', 'fandisk.off', 'mech-holes-shark.off', 't13_data.stl']) {
-      const wasm = run(['info', data(name), '--json']).stdout;
-      const nat = execFileSync(native, ['info', data(name), '--json'], { encoding: 'utf8' });
-      expect(wasm).toBe(nat);
+  it.skipIf(!nativeHas('info'))('info prints exactly what the native CLI prints: JSON, text, warnings, errors, exit codes', () => {
+    const files = ['spot.obj', 't13_data.stl'].map(data);
+    files.push(join(root, 'web', 'samples', 'needs-repair.obj')); // has warnings
+    const cases = files.flatMap((f) => [['info', f, '--json'], ['info', f]]);
+    cases.push(
+      ['info', 'no-such-file.obj', '--json'],
+      ['info', files[0]!, '--weld', 'x', '--json'],
+      ['info', files[0]!, '--weld', '-1'],
+      ['info', files[0]!, '--format', 'dxf', '--json'],
+      ['info', files[0]!, '--format', 'OBJ', '--json'],
+      ['info', '--json'],
+    );
+    for (const args of cases) {
+      const wasm = run(args);
+      const nat = spawnSync(native, args, { encoding: 'utf8' });
+      expect({ args, out: wasm.stdout, err: wasm.stderr, status: wasm.status }).toEqual({
+        args,
+        out: nat.stdout,
+        err: nat.stderr,
+        status: nat.status,
+      });
     }
   });
 });
