@@ -1,0 +1,187 @@
+// The page's access to the library: one createRemesher() worker (the module never runs on the
+// main thread), plus the shapes the views need. Functions the package build does not offer yet
+// (remesh, flatten) are detected here, so the page can say "not available in this build" rather
+// than pretend.
+import { ConformeshError, createRemesher, type MeshInfo, type MeshLike, type ReadMeshResult, type Remesher } from 'conformesh';
+
+export type BoundaryCondition = 'corners' | 'free' | 'disk';
+
+/** The parameters panel. Lengths are relative to the input's bounding-box diagonal. */
+export interface Params {
+  minAngle: number;
+  edgeLength: number;
+  featureAngle: number;
+  chordTolerance: number;
+  boundary: BoundaryCondition;
+}
+
+export interface Mesh3 {
+  positions: Float64Array;
+  triangles: Uint32Array;
+  uvs?: Float64Array;
+}
+
+/** One patch of the flattened domain (planar coordinates are per patch). */
+export interface FlatPatch {
+  id: number;
+  /** The input layout: planar positions (2·n) and triangles of the flattened input patch. */
+  layout?: { uv: Float64Array; triangles: Uint32Array; factor?: Float64Array };
+  /** The refined planar mesh (Delaunay refinement output), if the library returned it. */
+  refined?: { uv: Float64Array; triangles: Uint32Array; factor?: Float64Array };
+}
+
+export interface RemeshOutput {
+  mesh: Mesh3;
+  /** Library report: every scalar it returned, by key. */
+  report: Record<string, number | string | boolean>;
+  /** Patch id of every output triangle, when returned. */
+  patchOfTriangle?: Uint32Array;
+  /** Patch id of every input triangle (the library's segmentation), when returned. */
+  inputPatchOfFace?: Uint32Array;
+  /** Feature edges of the input as vertex pairs, when returned. */
+  inputFeatureEdges?: Uint32Array;
+  patches: FlatPatch[];
+}
+
+export interface FlattenOutput {
+  patches: FlatPatch[];
+  inputPatchOfFace?: Uint32Array;
+}
+
+export interface Progress {
+  stage: string;
+  fraction: number;
+}
+
+type Loose = Record<string, unknown>;
+
+function typed<T extends ArrayBufferView>(x: unknown, ctor: { new (a: ArrayLike<number>): T; from(a: ArrayLike<number>): T }): T | undefined {
+  if (x === undefined || x === null) return undefined;
+  if (x instanceof (ctor as unknown as new () => T)) return x as T;
+  if (ArrayBuffer.isView(x) || Array.isArray(x)) return ctor.from(x as ArrayLike<number>);
+  return undefined;
+}
+const f64 = (x: unknown) => typed(x, Float64Array);
+const u32 = (x: unknown) => typed(x, Uint32Array);
+const pick = (o: Loose | undefined, ...keys: string[]): unknown => {
+  if (!o) return undefined;
+  for (const k of keys) if (o[k] !== undefined && o[k] !== null) return o[k];
+  return undefined;
+};
+
+function planar(o: unknown): FlatPatch['layout'] {
+  if (!o || typeof o !== 'object') return undefined;
+  const r = o as Loose;
+  const uv = f64(pick(r, 'uv', 'uvs', 'planar', 'positions2d', 'positions'));
+  const triangles = u32(pick(r, 'triangles', 'faces'));
+  if (!uv || !triangles) return undefined;
+  const out: NonNullable<FlatPatch['layout']> = { uv, triangles };
+  const factor = f64(pick(r, 'factor', 'u', 'conformalFactor', 'scale'));
+  if (factor) out.factor = factor;
+  return out;
+}
+
+function patchesOf(list: unknown): FlatPatch[] {
+  if (!Array.isArray(list)) return [];
+  return list.map((p, i) => {
+    const r = (p ?? {}) as Loose;
+    const id = typeof r.id === 'number' ? r.id : i;
+    const out: FlatPatch = { id };
+    const layout = planar(pick(r, 'layout', 'input', 'flat')) ?? planar(r);
+    const refined = planar(pick(r, 'refined', 'planarMesh', 'output'));
+    if (layout) out.layout = layout;
+    if (refined) out.refined = refined;
+    return out;
+  });
+}
+
+function scalars(o: unknown): Record<string, number | string | boolean> {
+  const out: Record<string, number | string | boolean> = {};
+  const visit = (x: unknown, prefix: string, depth: number) => {
+    if (!x || typeof x !== 'object' || ArrayBuffer.isView(x)) return;
+    for (const [k, v] of Object.entries(x as Loose)) {
+      const key = prefix ? `${prefix}.${k}` : k;
+      if (typeof v === 'number' || typeof v === 'string' || typeof v === 'boolean') out[key] = v;
+      else if (Array.isArray(v)) out[`${key}.length`] = v.length;
+      else if (depth < 2 && v && typeof v === 'object' && !Array.isArray(v)) visit(v, key, depth + 1);
+    }
+  };
+  visit(o, '', 0);
+  return out;
+}
+
+export class Engine {
+  readonly remesher: Remesher;
+  readonly canRemesh: boolean;
+  readonly canFlatten: boolean;
+
+  constructor() {
+    this.remesher = createRemesher({ workers: 1 });
+    const r = this.remesher as unknown as Loose;
+    this.canRemesh = typeof r.remesh === 'function';
+    this.canFlatten = typeof r.flatten === 'function';
+  }
+
+  version(): Promise<string> {
+    return this.remesher.version();
+  }
+
+  read(bytes: Uint8Array, fileName: string): Promise<ReadMeshResult> {
+    return this.remesher.readMesh(bytes, { fileName });
+  }
+
+  info(mesh: MeshLike): Promise<MeshInfo> {
+    return this.remesher.meshInfo(mesh);
+  }
+
+  write(mesh: MeshLike, format: 'obj' | 'stl' | 'ply', writeUvs = false): Promise<Uint8Array> {
+    return this.remesher.writeMesh(mesh, format, { writeUvs });
+  }
+
+  /** Library options from the panel's parameters (lengths made absolute with the diagonal). */
+  options(params: Params, diagonal: number): Record<string, unknown> {
+    return {
+      minAngle: params.minAngle,
+      targetEdgeLength: params.edgeLength * diagonal,
+      featureAngle: params.featureAngle,
+      chordTolerance: params.chordTolerance * diagonal,
+      boundary: params.boundary,
+    };
+  }
+
+  async remesh(mesh: Mesh3, params: Params, diagonal: number, onProgress: (p: Progress) => void, signal: AbortSignal): Promise<RemeshOutput> {
+    if (!this.canRemesh) throw new ConformeshError('InternalError', 'api', 'remesh is not available in this build');
+    const fn = (this.remesher as unknown as Loose).remesh as (m: MeshLike, o: unknown, c: unknown) => Promise<unknown>;
+    const raw = (await fn.call(this.remesher, mesh, this.options(params, diagonal), { onProgress, signal })) as Loose;
+    const m = (pick(raw, 'mesh', 'output') as Loose | undefined) ?? raw;
+    const positions = f64(m.positions);
+    const triangles = u32(m.triangles);
+    if (!positions || !triangles) throw new ConformeshError('InternalError', 'api', 'remesh returned no mesh');
+    const out: RemeshOutput = {
+      mesh: { positions, triangles },
+      report: scalars(pick(raw, 'report', 'quality', 'stats')),
+      patches: patchesOf(pick(raw, 'patches', 'flat')),
+    };
+    const uvs = f64(m.uvs);
+    if (uvs) out.mesh.uvs = uvs;
+    const pot = u32(pick(raw, 'patchOfTriangle', 'trianglePatch', 'facePatch', 'patchIds'));
+    if (pot) out.patchOfTriangle = pot;
+    const ipf = u32(pick(raw, 'inputPatchOfFace', 'inputFacePatch', 'segmentation'));
+    if (ipf) out.inputPatchOfFace = ipf;
+    const fe = u32(pick(raw, 'featureEdges', 'inputFeatureEdges'));
+    if (fe) out.inputFeatureEdges = fe;
+    return out;
+  }
+
+  async flatten(mesh: Mesh3, params: Params, diagonal: number, signal: AbortSignal): Promise<FlattenOutput> {
+    if (!this.canFlatten) throw new ConformeshError('InternalError', 'api', 'flatten is not available in this build');
+    const fn = (this.remesher as unknown as Loose).flatten as (m: MeshLike, o: unknown, c: unknown) => Promise<unknown>;
+    const raw = (await fn.call(this.remesher, mesh, { boundary: params.boundary }, { signal })) as Loose;
+    // one patch (flatten works on a disk): uv and u per input vertex, over the input triangles
+    const list = (pick(raw, 'patches') as unknown[] | undefined) ?? [{ triangles: mesh.triangles, ...raw }];
+    const out: FlattenOutput = { patches: patchesOf(list) };
+    const ipf = u32(pick(raw, 'patchOfFace', 'inputPatchOfFace', 'facePatch'));
+    if (ipf) out.inputPatchOfFace = ipf;
+    return out;
+  }
+}

@@ -1,0 +1,715 @@
+// The conformesh demo page: load a mesh, remesh it in a Web Worker, show the input (features,
+// patches), the flattened domain and the remesh side by side, with the quality report and exports.
+import GUI from 'lil-gui';
+import type { LineSegments, Mesh } from 'three';
+import type { MeshInfo } from 'conformesh';
+import { Engine, type FlatPatch, type Mesh3, type Params, type RemeshOutput } from './engine.ts';
+import { clearError, showError } from './errors.ts';
+import { Analyzer } from './analysis.ts';
+import { minAnglePerTriangle, type AngleStats, type Bounds, type FeaturePreview } from './geometry.ts';
+import { drawHistogram } from './histogram.ts';
+import { mountingPlateOff } from './plate.ts';
+import { FrameProbe } from './probe.ts';
+import {
+  NEUTRAL,
+  edgeLines,
+  faceColoredMesh,
+  flatScene,
+  minAngleColor,
+  paintFaces,
+  paintFlat,
+  patchColor,
+  selectionShade,
+  wireframe,
+  type FlatScene,
+} from './scenes.ts';
+import { Viewport } from './viewport.ts';
+import annulusUrl from '../samples/annulus.ply?url';
+import boxWithHoleUrl from '../samples/box-with-hole.stl?url';
+import diskUrl from '../samples/disk.obj?url';
+import needsRepairUrl from '../samples/needs-repair.obj?url';
+import torusUrl from '../samples/torus.off?url';
+
+const $ = <T extends HTMLElement = HTMLElement>(sel: string) => document.querySelector<T>(sel)!;
+const errorBox = $('#error');
+const noticeBox = $('#notice');
+const probe = new FrameProbe();
+const analyzer = new Analyzer();
+
+// ---------------------------------------------------------------- state
+interface Input {
+  name: string;
+  mesh: Mesh3;
+  bounds: Bounds;
+  angles: Float64Array;
+  stats: AngleStats;
+  info?: MeshInfo;
+  preview: FeaturePreview;
+}
+interface Output {
+  result: RemeshOutput;
+  angles: Float64Array;
+  minAngles: Float64Array;
+  stats: AngleStats;
+  seconds: number;
+}
+let input: Input | undefined;
+let output: Output | undefined;
+let flatPatches: FlatPatch[] | undefined;
+let libraryPatchOfFace: Uint32Array | undefined;
+let selected: number | undefined;
+let running: AbortController | undefined;
+let loadSeq = 0;
+const lastLoad = { analysisMs: NaN, buildMs: NaN, firstFrameMs: NaN };
+const lastRemesh = { maxFrameGapMs: NaN, frames: 0, seconds: NaN, applyMs: NaN };
+
+const params: Params = { minAngle: 30, edgeLength: 0.02, featureAngle: 40, chordTolerance: 0.001, boundary: 'corners' };
+const toggles = { features: true, patches: true, inputWire: false, layout: true, refined: true, remeshWire: true };
+
+function setState(s: string): void {
+  document.body.dataset.state = s;
+}
+
+// ---------------------------------------------------------------- engine
+let engine: Engine;
+try {
+  engine = new Engine();
+} catch (e) {
+  showError(errorBox, e, 'starting the conformesh worker');
+  throw e;
+}
+engine.version().then(
+  (v) => ($('#version').textContent = `v${v}`),
+  (e) => showError(errorBox, e, 'loading the conformesh module'),
+);
+
+// ---------------------------------------------------------------- views
+const inputView = new Viewport($('[data-testid=canvas-input]'), '3d');
+const flatView = new Viewport($('[data-testid=canvas-flat]'), '2d');
+const remeshView = new Viewport($('[data-testid=canvas-remesh]'), '3d');
+const views = [inputView, flatView, remeshView];
+
+let inputMesh: Mesh | undefined;
+let inputFeatures: LineSegments | undefined;
+let inputWire: LineSegments | undefined;
+let flat: FlatScene | undefined;
+let remeshMesh: Mesh | undefined;
+let remeshWire: LineSegments | undefined;
+
+// the two 3D views share their camera
+let syncing = false;
+function linkCameras(a: Viewport, b: Viewport): void {
+  a.controls.addEventListener('change', () => {
+    if (syncing) return;
+    syncing = true;
+    b.camera.position.copy(a.camera.position);
+    b.controls.target.copy(a.controls.target);
+    b.controls.update();
+    b.requestRender();
+    syncing = false;
+  });
+}
+linkCameras(inputView, remeshView);
+linkCameras(remeshView, inputView);
+
+/** Patch ids of the input faces: the library's segmentation when known, else the preview's. */
+function patchOfFace(): Uint32Array | undefined {
+  return libraryPatchOfFace ?? input?.preview.patchOfFace;
+}
+
+function featureEdges(): Uint32Array | undefined {
+  return output?.result.inputFeatureEdges ?? input?.preview.featureEdges;
+}
+
+function legend(): void {
+  const li = $('#legend-input');
+  const lf = $('#legend-flat');
+  const lr = $('#legend-remesh');
+  if (!input) {
+    li.textContent = 'load a mesh';
+    lf.textContent = '';
+    lr.textContent = '';
+    return;
+  }
+  const pid = patchOfFace();
+  const source = libraryPatchOfFace ? 'library segmentation' : `preview: regions between edges sharper than ${params.featureAngle}°`;
+  li.textContent = `${input.name} · ${input.mesh.triangles.length / 3} triangles · orange: feature curves · colours: patches (${source})` +
+    (selected !== undefined && pid ? ` · selected patch ${selected}` : '');
+  if (flat) {
+    const [a, b] = flat.factorRange;
+    lf.textContent = `${flat.fills.length} patches · fill: conformal factor u, ${a.toFixed(2)} (dark) … ${b.toFixed(2)} (yellow) · white: input layout · orange: refined mesh`;
+  } else lf.textContent = '';
+  lr.textContent = output
+    ? `${output.result.mesh.triangles.length / 3} triangles · triangle min angle: red < 20°, orange < 30°, green ≥ 30° (brighter toward 60°)`
+    : '';
+}
+
+function paintInput(): void {
+  if (!input || !inputMesh) return;
+  const pid = patchOfFace();
+  paintFaces(inputMesh, (f) => {
+    const p = pid?.[f];
+    const base = toggles.patches && p !== undefined ? patchColor(p) : NEUTRAL;
+    return selectionShade(base, p, selected);
+  });
+  inputView.requestRender();
+}
+
+function buildInput(frame: boolean): void {
+  inputView.clear();
+  inputMesh = inputFeatures = inputWire = undefined;
+  if (!input) return;
+  inputMesh = faceColoredMesh(input.mesh);
+  inputView.scene.add(inputMesh);
+  inputView.pickable = [inputMesh];
+  const fe = featureEdges();
+  if (fe && fe.length) {
+    inputFeatures = edgeLines(input.mesh.positions, fe, 0xff8c1a);
+    inputFeatures.visible = toggles.features;
+    inputView.scene.add(inputFeatures);
+  }
+  if (toggles.inputWire) ensureInputWire();
+  paintInput();
+  if (frame) inputView.frame([inputMesh]);
+  inputView.requestRender();
+}
+
+/** The input wireframe is built on first use (it costs as much as the mesh itself). */
+function ensureInputWire(): void {
+  if (inputWire || !input) return;
+  inputWire = wireframe(input.mesh, 0x101215, 0.5);
+  inputView.scene.add(inputWire);
+}
+
+function showUnavailable(id: string, text: string | undefined): void {
+  const el = $(id);
+  el.hidden = !text;
+  el.textContent = text ?? '';
+}
+
+function buildFlat(): void {
+  flatView.clear();
+  flat = undefined;
+  const patches = output?.result.patches.length ? output.result.patches : flatPatches;
+  if (!patches || patches.length === 0) {
+    if (!engine.canFlatten && !engine.canRemesh) {
+      showUnavailable('#flat-unavailable', 'Flattening is not available in this build of conformesh: the package has no flatten/remesh binding yet. Nothing is shown rather than a made-up domain.');
+    } else if (output) {
+      showUnavailable('#flat-unavailable', 'This build\u2019s remesh result carries no planar patches to show.');
+    } else {
+      showUnavailable('#flat-unavailable', input ? 'Run Remesh to see every patch flattened.' : undefined);
+    }
+    legend();
+    return;
+  }
+  showUnavailable('#flat-unavailable', undefined);
+  flat = flatScene(patches);
+  flatView.scene.add(flat.group);
+  flatView.pickable = flat.fills;
+  for (const l of flat.layoutLines) l.visible = toggles.layout;
+  for (const l of flat.refinedLines) l.visible = toggles.refined;
+  paintFlat(flat, selected);
+  flatView.frame([flat.group]);
+  legend();
+}
+
+function paintRemesh(): void {
+  if (!output || !remeshMesh) return;
+  const pot = output.result.patchOfTriangle;
+  const linked = pot && libraryPatchOfFace ? pot : undefined;
+  paintFaces(remeshMesh, (f) => selectionShade(minAngleColor(output!.minAngles[f]!), linked?.[f], selected));
+  remeshView.requestRender();
+}
+
+function buildRemesh(): void {
+  remeshView.clear();
+  remeshMesh = remeshWire = undefined;
+  if (!engine.canRemesh) {
+    showUnavailable('#remesh-unavailable', 'Remeshing is not available in this build of conformesh: the package has no remesh binding yet. The Remesh button is disabled; nothing is faked here.');
+    return;
+  }
+  if (!output) {
+    showUnavailable('#remesh-unavailable', input ? 'Press Remesh.' : undefined);
+    return;
+  }
+  showUnavailable('#remesh-unavailable', undefined);
+  remeshMesh = faceColoredMesh(output.result.mesh);
+  remeshView.scene.add(remeshMesh);
+  remeshView.pickable = [remeshMesh];
+  remeshWire = wireframe(output.result.mesh, 0x0c0e12, 0.55);
+  remeshWire.visible = toggles.remeshWire;
+  remeshView.scene.add(remeshWire);
+  paintRemesh();
+  // same camera as the input view
+  remeshView.camera.position.copy(inputView.camera.position);
+  remeshView.controls.target.copy(inputView.controls.target);
+  (remeshView.camera as typeof inputView.camera).near = (inputView.camera as typeof remeshView.camera).near;
+  remeshView.camera.far = inputView.camera.far;
+  remeshView.camera.updateProjectionMatrix();
+  remeshView.controls.update();
+  remeshView.requestRender();
+}
+
+function select(patch: number | undefined): void {
+  selected = patch;
+  paintInput();
+  if (flat) {
+    paintFlat(flat, selected);
+    flatView.requestRender();
+  }
+  paintRemesh();
+  legend();
+}
+
+inputView.onPick = (hit) => select(hit ? patchOfFace()?.[hit.faceIndex] : undefined);
+flatView.onPick = (hit) => select(hit ? (hit.object.userData.patch as number) : undefined);
+remeshView.onPick = (hit) => {
+  const pot = output?.result.patchOfTriangle;
+  select(hit && pot ? pot[hit.faceIndex] : undefined);
+};
+
+// ---------------------------------------------------------------- quality panel
+const fmt = (x: number | undefined, digits = 2, unit = '') => (x === undefined || !Number.isFinite(x) ? '—' : `${x.toFixed(digits)}${unit}`);
+const pct = (x: number | undefined) => (x === undefined || !Number.isFinite(x) ? '—' : `${(100 * x).toFixed(2)}%`);
+
+function qualityTable(): void {
+  const body = $('#quality tbody');
+  body.replaceChildren();
+  const row = (key: string, label: string, a: string, b: string, bad = false) => {
+    const tr = document.createElement('tr');
+    tr.dataset.key = key;
+    const th = document.createElement('td');
+    th.textContent = label;
+    const ta = document.createElement('td');
+    ta.textContent = a;
+    ta.dataset.testid = `q-in-${key}`;
+    const tb = document.createElement('td');
+    tb.textContent = b;
+    tb.dataset.testid = `q-out-${key}`;
+    if (bad) tb.className = 'bad';
+    tr.append(th, ta, tb);
+    body.append(tr);
+  };
+  const i = input, o = output;
+  const target = params.minAngle;
+  row('vertices', 'vertices', i ? String(i.mesh.positions.length / 3) : '—', o ? String(o.result.mesh.positions.length / 3) : '—');
+  row('triangles', 'triangles', i ? String(i.mesh.triangles.length / 3) : '—', o ? String(o.result.mesh.triangles.length / 3) : '—');
+  row('minAngle', 'min angle', fmt(i?.stats.min, 2, '°'), fmt(o?.stats.min, 2, '°'), !!o && o.stats.min < target - 1e-9);
+  row('maxAngle', 'max angle', fmt(i?.stats.max, 2, '°'), fmt(o?.stats.max, 2, '°'));
+  row('meanMin', 'mean triangle min angle', fmt(i?.stats.meanMin, 2, '°'), fmt(o?.stats.meanMin, 2, '°'));
+  row('below30', 'angles < 30°', pct(i?.stats.below30), pct(o?.stats.below30));
+  row('below20', 'angles < 20°', pct(i?.stats.below20), pct(o?.stats.below20));
+  if (i?.info) {
+    row('components', 'components', String(i.info.components), '—');
+    row('genus', 'genus', String(i.info.genus), '—');
+    row('boundaryLoops', 'boundary loops', String(i.info.boundaryLoops), '—');
+  }
+  if (o) {
+    row('time', 'remesh time (worker)', '', `${o.seconds.toFixed(2)} s`);
+    for (const [k, v] of Object.entries(o.result.report)) {
+      const [label, text] = reportRow(k, v);
+      row(`report.${k}`, label, '', text);
+    }
+  }
+}
+
+// Labels and units of the library report's keys (others are shown as they come).
+const REPORT_LABELS: Record<string, [string, 'deg' | 'pct' | 'frac' | 'rel' | 's' | 'n']> = {
+  minAngle: ['library: min angle', 'deg'],
+  maxAngle: ['library: max angle', 'deg'],
+  meanMinAngle: ['library: mean min angle', 'deg'],
+  minAngleOutsideExempt: ['min angle away from exempt corners', 'deg'],
+  trianglesBelowBoundOutsideExempt: ['triangles below bound (not at exempt corners)', 'n'],
+  'exemptCorners.length': ['exempt corners (input angle < bound)', 'n'],
+  pctBelow20: ['library: angles < 20°', 'pct'],
+  pctBelow26: ['library: angles < 26°', 'pct'],
+  pctBelow30: ['library: angles < 30°', 'pct'],
+  delaunayFraction: ['Delaunay edges (3D)', 'frac'],
+  hausdorffRel: ['Hausdorff distance (× diagonal)', 'rel'],
+  maxDistanceToInputRel: ['max vertex distance to input (× diag.)', 'rel'],
+  meanEdgeLength: ['mean edge length', 'n'],
+  targetEdgeLength: ['target edge length', 'n'],
+};
+
+function reportRow(key: string, v: number | string | boolean): [string, string] {
+  const known = REPORT_LABELS[key];
+  const secs = key.startsWith('seconds.');
+  const label = known?.[0] ?? (secs ? `time: ${key.slice(8)}` : key);
+  if (typeof v !== 'number') return [label, String(v)];
+  const unit = known?.[1] ?? (secs ? 's' : 'n');
+  switch (unit) {
+    case 'deg': return [label, `${v.toFixed(2)}°`];
+    case 'pct': return [label, `${v.toFixed(2)}%`];
+    case 'frac': return [label, `${(100 * v).toFixed(2)}%`];
+    case 'rel': return [label, v < 0 ? 'not computed' : v.toExponential(2)];
+    case 's': return [label, `${v.toFixed(3)} s`];
+    default: return [label, Number.isInteger(v) ? String(v) : v.toPrecision(4)];
+  }
+}
+
+function histogram(): void {
+  drawHistogram($<HTMLCanvasElement>('#histogram'), input?.angles, output?.angles, params.minAngle);
+}
+
+// ---------------------------------------------------------------- progress
+const STAGES = ['validate', 'segment', 'curve-mesh', 'flatten', 'refine', 'lift', 'stitch', 'report'];
+const progressList = $('#progress');
+const bars = new Map<string, { li: HTMLLIElement; bar: HTMLDivElement; label: HTMLSpanElement }>();
+for (const s of STAGES) {
+  const li = document.createElement('li');
+  const name = document.createElement('span');
+  name.textContent = s;
+  const outer = document.createElement('div');
+  outer.className = 'bar';
+  const bar = document.createElement('div');
+  outer.append(bar);
+  const label = document.createElement('span');
+  label.textContent = '';
+  li.append(name, outer, label);
+  li.dataset.stage = s;
+  progressList.append(li);
+  bars.set(s, { li, bar, label });
+}
+function resetProgress(): void {
+  for (const { li, bar, label } of bars.values()) {
+    li.className = '';
+    bar.style.width = '0';
+    label.textContent = '';
+  }
+}
+function setProgress(stage: string, fraction: number): void {
+  const idx = STAGES.indexOf(stage);
+  if (idx < 0) return;
+  STAGES.forEach((s, k) => {
+    const b = bars.get(s)!;
+    if (k < idx) {
+      b.li.className = 'done';
+      b.bar.style.width = '100%';
+      b.label.textContent = '100%';
+    } else if (k === idx) {
+      b.bar.style.width = `${(100 * fraction).toFixed(1)}%`;
+      b.label.textContent = `${Math.round(100 * fraction)}%`;
+      if (fraction >= 1) b.li.className = 'done';
+    }
+  });
+}
+
+// ---------------------------------------------------------------- loading
+function notice(text: string | undefined): void {
+  noticeBox.hidden = !text;
+  noticeBox.textContent = text ?? '';
+}
+
+function updateButtons(): void {
+  const rb = $<HTMLButtonElement>('#remesh-button');
+  rb.disabled = !input || !engine.canRemesh || !!running;
+  rb.title = engine.canRemesh ? '' : 'remesh is not available in this build of conformesh';
+  $<HTMLButtonElement>('#cancel-button').disabled = !running;
+  for (const b of document.querySelectorAll<HTMLButtonElement>('#export button')) {
+    const f = b.dataset.format;
+    b.disabled = !output || (f === 'obj-uv' && !output.result.mesh.uvs);
+    b.title = f === 'obj-uv' && output && !output.result.mesh.uvs ? 'this build\u2019s remesh returns no conformal UVs' : '';
+  }
+}
+
+async function load(bytes: Uint8Array, name: string): Promise<void> {
+  const seq = ++loadSeq;
+  running?.abort();
+  clearError(errorBox);
+  notice(undefined);
+  setState('loading');
+  $('#mesh-name').textContent = `reading ${name} (${(bytes.length / 1024).toFixed(0)} KB)…`;
+  try {
+    const read = await engine.read(bytes, name);
+    if (seq !== loadSeq) return;
+    const mesh: Mesh3 = { positions: read.positions, triangles: read.triangles };
+    let info: MeshInfo | undefined;
+    try {
+      info = await engine.info(mesh);
+    } catch (e) {
+      // a build without the topology report still shows the mesh; anything else is a real error
+      if (!(e instanceof Error && /has no 'meshInfo'/.test(e.message))) throw e;
+    }
+    if (seq !== loadSeq) return;
+    const tGeo = performance.now();
+    const a = await analyzer.analyze(mesh, { angles: true, featureAngle: params.featureAngle });
+    if (seq !== loadSeq) return;
+    input = {
+      name,
+      mesh,
+      bounds: a.bounds,
+      angles: a.angles!,
+      stats: a.stats!,
+      preview: a.preview!,
+      ...(info ? { info } : {}),
+    };
+    output = undefined;
+    flatPatches = undefined;
+    libraryPatchOfFace = undefined;
+    selected = undefined;
+    $('#mesh-name').textContent = `${name}: ${mesh.positions.length / 3} vertices, ${mesh.triangles.length / 3} triangles` +
+      (info ? `, genus ${info.genus}, ${info.boundaryLoops} boundary loops, ${info.components} component(s)` : '') +
+      (read.warnings.length ? ` — reader: ${read.warnings.join('; ')}` : '');
+    const findings = (info?.warnings ?? []).map((w) => (typeof w === 'string' ? w : (w as { message: string }).message));
+    notice(findings.length ? `Topology findings (the remesher repairs or rejects these): ${findings.join('; ')}` : undefined);
+    resetProgress();
+    const tBuild = performance.now();
+    buildInput(true);
+    buildFlat();
+    buildRemesh();
+    qualityTable();
+    histogram();
+    legend();
+    updateButtons();
+    const tEnd = performance.now();
+    requestAnimationFrame(() => {
+      const tFrame = performance.now();
+      Object.assign(lastLoad, { analysisMs: tBuild - tGeo, buildMs: tEnd - tBuild, firstFrameMs: tFrame - tEnd });
+    });
+    setState('loaded');
+    // flatten() maps one disk-like patch; other inputs get their patches' domains from Remesh
+    const disk = info && info.components === 1 && info.boundaryLoops >= 1 && info.genus === 0 && info.nonManifoldEdges === 0;
+    if (engine.canFlatten && disk) void flattenInput(seq);
+  } catch (e) {
+    if (seq !== loadSeq) return;
+    showError(errorBox, e, `reading ${name}`);
+    $('#mesh-name').textContent = input ? `still showing ${input.name}` : '';
+    setState('error');
+  }
+}
+
+async function flattenInput(seq: number): Promise<void> {
+  if (!input) return;
+  const ac = new AbortController();
+  try {
+    const r = await engine.flatten(input.mesh, params, input.bounds.diagonal, ac.signal);
+    if (seq !== loadSeq || output) return;
+    flatPatches = r.patches;
+    if (r.inputPatchOfFace) libraryPatchOfFace = r.inputPatchOfFace;
+    buildInput(false);
+    buildFlat();
+  } catch (e) {
+    if (seq !== loadSeq) return;
+    showError(errorBox, e, 'flattening the input');
+    buildFlat();
+  }
+}
+
+async function loadFile(file: File): Promise<void> {
+  try {
+    await load(new Uint8Array(await file.arrayBuffer()), file.name);
+  } catch (e) {
+    showError(errorBox, e, `reading ${file.name}`);
+    setState('error');
+  }
+}
+
+// meshes made by `conformesh generate` (web/samples/README.md), emitted by Vite as assets
+const GENERATED: Record<string, string> = {
+  'box-with-hole.stl': boxWithHoleUrl,
+  'disk.obj': diskUrl,
+  'annulus.ply': annulusUrl,
+  'torus.off': torusUrl,
+  'needs-repair.obj': needsRepairUrl,
+};
+
+async function loadSample(which: string): Promise<void> {
+  try {
+    const generated = GENERATED[which];
+    if (generated) {
+      const res = await fetch(generated);
+      if (!res.ok) throw new Error(`cannot fetch the sample ${which}: HTTP ${res.status}`);
+      await load(new Uint8Array(await res.arrayBuffer()), which);
+    } else if (which === 'spot') {
+      const res = await fetch('./samples/spot.obj');
+      if (!res.ok) throw new Error(`cannot fetch samples/spot.obj: HTTP ${res.status}`);
+      await load(new Uint8Array(await res.arrayBuffer()), 'spot.obj');
+    } else if (which === 'plate') {
+      await load(new TextEncoder().encode(mountingPlateOff()), 'mounting-plate.off');
+    }
+  } catch (e) {
+    showError(errorBox, e, 'loading the sample');
+    setState('error');
+  }
+}
+
+// ---------------------------------------------------------------- remesh
+async function remesh(): Promise<void> {
+  if (!input || running || !engine.canRemesh) return;
+  const seq = loadSeq;
+  const ac = new AbortController();
+  running = ac;
+  updateButtons();
+  clearError(errorBox);
+  notice(undefined);
+  resetProgress();
+  setState('remeshing');
+  probe.reset();
+  const t0 = performance.now();
+  try {
+    const result = await engine.remesh(input.mesh, params, input.bounds.diagonal, (p) => setProgress(p.stage, p.fraction), ac.signal);
+    const seconds = (performance.now() - t0) / 1000;
+    const gap = probe.read();
+    if (seq !== loadSeq) return;
+    const a = await analyzer.analyze(result.mesh, { angles: true });
+    if (seq !== loadSeq) return;
+    const t1 = performance.now();
+    output = { result, angles: a.angles!, minAngles: minAnglePerTriangle(a.angles!), stats: a.stats!, seconds };
+    if (result.inputPatchOfFace) libraryPatchOfFace = result.inputPatchOfFace;
+    selected = undefined;
+    STAGES.forEach((s) => setProgress(s, 1));
+    buildInput(false);
+    buildFlat();
+    buildRemesh();
+    qualityTable();
+    histogram();
+    legend();
+    Object.assign(lastRemesh, { maxFrameGapMs: gap.maxGap, frames: gap.frames, seconds, applyMs: performance.now() - t1 });
+    setState('remeshed');
+  } catch (e) {
+    if (seq !== loadSeq) return;
+    const cancelled = (e as { code?: string }).code === 'Cancelled';
+    for (const b of bars.values()) if (b.li.className !== 'done' && b.bar.style.width !== '0px' && b.bar.style.width !== '0') b.li.className = 'failed';
+    if (cancelled) {
+      notice('Remesh cancelled.');
+      setState('loaded');
+    } else {
+      showError(errorBox, e, 'remeshing');
+      setState('error');
+    }
+  } finally {
+    if (running === ac) running = undefined;
+    updateButtons();
+  }
+}
+
+// ---------------------------------------------------------------- export
+function download(bytes: Uint8Array, name: string): void {
+  const url = URL.createObjectURL(new Blob([bytes as BlobPart], { type: 'application/octet-stream' }));
+  const a = document.createElement('a');
+  a.href = url;
+  a.download = name;
+  document.body.append(a);
+  a.click();
+  a.remove();
+  setTimeout(() => URL.revokeObjectURL(url), 10_000);
+}
+
+async function exportAs(format: string): Promise<void> {
+  if (!output || !input) return;
+  const base = input.name.replace(/\.[^.]*$/, '') + '-remesh';
+  const m = output.result.mesh;
+  try {
+    if (format === 'obj-uv') {
+      if (!m.uvs) return;
+      download(await engine.write({ positions: m.positions, triangles: m.triangles, uvs: m.uvs }, 'obj', true), `${base}-uv.obj`);
+    } else {
+      const f = format as 'obj' | 'stl' | 'ply';
+      download(await engine.write({ positions: m.positions, triangles: m.triangles }, f), `${base}.${f}`);
+    }
+  } catch (e) {
+    showError(errorBox, e, `writing ${format.toUpperCase()}`);
+  }
+}
+
+// ---------------------------------------------------------------- controls
+const gui = new GUI({ container: $('#params'), title: 'Parameters' });
+gui.add(params, 'minAngle', 5, 34, 0.5).name('min angle (°)').onChange(() => { histogram(); qualityTable(); });
+gui.add(params, 'edgeLength', 0.002, 0.2, 0.001).name('edge length (× diagonal)');
+gui.add(params, 'featureAngle', 5, 120, 1).name('feature angle (°)').onFinishChange(async () => {
+  const current = input;
+  if (!current || libraryPatchOfFace) return;
+  try {
+    const a = await analyzer.analyze(current.mesh, { angles: false, featureAngle: params.featureAngle });
+    if (current !== input || !a.preview) return;
+    current.preview = a.preview;
+    selected = undefined;
+    buildInput(false);
+    legend();
+  } catch (e) {
+    showError(errorBox, e, 'updating the feature preview');
+  }
+});
+gui.add(params, 'chordTolerance', 0.0001, 0.01, 0.0001).name('chord tolerance (× diag.)');
+gui.add(params, 'boundary', { 'corner-preserving': 'corners', 'free (u = 0)': 'free', 'round disk': 'disk' }).name('boundary condition');
+
+$('#remesh-button').addEventListener('click', () => void remesh());
+$('#cancel-button').addEventListener('click', () => running?.abort());
+for (const b of document.querySelectorAll<HTMLButtonElement>('#export button')) {
+  b.addEventListener('click', () => void exportAs(b.dataset.format!));
+}
+$<HTMLInputElement>('#file-input').addEventListener('change', (e) => {
+  const input = e.target as HTMLInputElement;
+  const file = input.files?.[0];
+  if (file) void loadFile(file);
+  input.value = '';
+});
+$<HTMLSelectElement>('#sample').addEventListener('change', (e) => {
+  const v = (e.target as HTMLSelectElement).value;
+  if (v) void loadSample(v);
+});
+const drop = $('#drop');
+document.addEventListener('dragover', (e) => {
+  e.preventDefault();
+  drop.classList.add('over');
+});
+document.addEventListener('dragleave', (e) => {
+  if (e.target === document.documentElement || e.target === drop) drop.classList.remove('over');
+});
+document.addEventListener('drop', (e) => {
+  e.preventDefault();
+  drop.classList.remove('over');
+  const file = e.dataTransfer?.files?.[0];
+  if (file) void loadFile(file);
+});
+const bindToggle = (id: string, key: keyof typeof toggles, apply: () => void) => {
+  const el = $<HTMLInputElement>(id);
+  el.checked = toggles[key];
+  el.addEventListener('change', () => {
+    toggles[key] = el.checked;
+    apply();
+  });
+};
+bindToggle('#show-features', 'features', () => { if (inputFeatures) inputFeatures.visible = toggles.features; inputView.requestRender(); });
+bindToggle('#show-patches', 'patches', () => paintInput());
+bindToggle('#show-input-wire', 'inputWire', () => {
+  if (toggles.inputWire) ensureInputWire();
+  if (inputWire) inputWire.visible = toggles.inputWire;
+  inputView.requestRender();
+});
+bindToggle('#show-layout', 'layout', () => { for (const l of flat?.layoutLines ?? []) l.visible = toggles.layout; flatView.requestRender(); });
+bindToggle('#show-refined', 'refined', () => { for (const l of flat?.refinedLines ?? []) l.visible = toggles.refined; flatView.requestRender(); });
+bindToggle('#show-remesh-wire', 'remeshWire', () => { if (remeshWire) remeshWire.visible = toggles.remeshWire; remeshView.requestRender(); });
+
+// nothing escapes as an uncaught exception: show it in the page instead
+window.addEventListener('error', (e) => {
+  showError(errorBox, e.error ?? e.message, 'unexpected error');
+  e.preventDefault();
+});
+window.addEventListener('unhandledrejection', (e) => {
+  showError(errorBox, e.reason, 'unexpected error');
+  e.preventDefault();
+});
+
+// hooks for the end-to-end test and for scripting the page from the console
+declare global {
+  interface Window {
+    conformeshPage: unknown;
+  }
+}
+window.conformeshPage = {
+  probe,
+  lastRemesh,
+  lastLoad,
+  capabilities: { remesh: engine.canRemesh, flatten: engine.canFlatten },
+  renderAll: () => views.forEach((v) => v.renderNow()),
+  loadSample,
+};
+
+buildFlat();
+buildRemesh();
+qualityTable();
+histogram();
+legend();
+updateButtons();
+setState('ready');

@@ -1,0 +1,198 @@
+// Building the three views' scene content from meshes and per-triangle data, and repainting the
+// per-triangle colours when the selection or the toggles change.
+import {
+  BufferAttribute,
+  BufferGeometry,
+  DoubleSide,
+  Group,
+  LineBasicMaterial,
+  LineSegments,
+  Mesh,
+  MeshBasicMaterial,
+  MeshStandardMaterial,
+  WireframeGeometry,
+} from 'three';
+import { toBufferGeometry } from 'conformesh/three';
+import type { FlatPatch, Mesh3 } from './engine.ts';
+import { minAngleColor, patchColor, ramp, type RGB } from './colors.ts';
+
+/** A non-indexed triangle mesh (one colour per triangle) with flat shading. */
+export function faceColoredMesh(mesh: Mesh3): Mesh {
+  const indexed = toBufferGeometry({ positions: mesh.positions, triangles: mesh.triangles });
+  const geometry = indexed.toNonIndexed();
+  indexed.dispose();
+  geometry.deleteAttribute('normal');
+  geometry.computeVertexNormals();
+  geometry.setAttribute('color', new BufferAttribute(new Float32Array(mesh.triangles.length * 3), 3));
+  const material = new MeshStandardMaterial({
+    vertexColors: true,
+    flatShading: true,
+    roughness: 0.85,
+    metalness: 0,
+    side: DoubleSide,
+    polygonOffset: true,
+    polygonOffsetFactor: 1,
+    polygonOffsetUnits: 1,
+  });
+  return new Mesh(geometry, material);
+}
+
+/** Set triangle f's colour in a faceColoredMesh. */
+export function paintFaces(mesh: Mesh, colorOf: (f: number) => RGB): void {
+  const attr = mesh.geometry.getAttribute('color') as BufferAttribute;
+  const c = attr.array as Float32Array;
+  const nF = c.length / 9;
+  for (let f = 0; f < nF; ++f) {
+    const [r, g, b] = colorOf(f);
+    for (let k = 0; k < 3; ++k) {
+      c[9 * f + 3 * k] = r;
+      c[9 * f + 3 * k + 1] = g;
+      c[9 * f + 3 * k + 2] = b;
+    }
+  }
+  attr.needsUpdate = true;
+}
+
+export function wireframe(mesh: Mesh3, color: number, opacity: number): LineSegments {
+  const g = toBufferGeometry({ positions: mesh.positions, triangles: mesh.triangles });
+  const lines = new LineSegments(new WireframeGeometry(g), new LineBasicMaterial({ color, transparent: opacity < 1, opacity }));
+  g.dispose();
+  return lines;
+}
+
+/** Line segments between vertex pairs (2·n indices). */
+export function edgeLines(positions: Float64Array, pairs: Uint32Array, color: number): LineSegments {
+  const p = new Float32Array(pairs.length * 3);
+  for (let i = 0; i < pairs.length; ++i) {
+    const v = pairs[i]!;
+    p[3 * i] = positions[3 * v]!;
+    p[3 * i + 1] = positions[3 * v + 1]!;
+    p[3 * i + 2] = positions[3 * v + 2]!;
+  }
+  const g = new BufferGeometry();
+  g.setAttribute('position', new BufferAttribute(p, 3));
+  return new LineSegments(g, new LineBasicMaterial({ color }));
+}
+
+/** Colour of an input triangle: its patch (or neutral), brightened when selected, dimmed when another patch is. */
+export function selectionShade(base: RGB, patch: number | undefined, selected: number | undefined): RGB {
+  if (selected === undefined || patch === undefined) return base;
+  if (patch === selected) return [0.35 + 0.65 * base[0], 0.35 + 0.65 * base[1], 0.35 + 0.65 * base[2]];
+  return [base[0] * 0.35, base[1] * 0.35, base[2] * 0.35];
+}
+
+export const NEUTRAL: RGB = [0.7, 0.72, 0.76];
+export { minAngleColor, patchColor };
+
+export interface FlatScene {
+  group: Group;
+  /** Filled meshes, one per patch (pickable; userData.patch is the patch id). */
+  fills: Mesh[];
+  layoutLines: LineSegments[];
+  refinedLines: LineSegments[];
+  factorRange: [number, number];
+}
+
+function planarGeometry(uv: Float64Array, triangles: Uint32Array, dx: number, dy: number): BufferGeometry {
+  const n = uv.length / 2;
+  const p = new Float32Array(3 * n);
+  for (let i = 0; i < n; ++i) {
+    p[3 * i] = uv[2 * i]! + dx;
+    p[3 * i + 1] = uv[2 * i + 1]! + dy;
+  }
+  const g = new BufferGeometry();
+  g.setAttribute('position', new BufferAttribute(p, 3));
+  g.setIndex(new BufferAttribute(Uint32Array.from(triangles), 1));
+  return g;
+}
+
+function box2(uv: Float64Array): [number, number, number, number] {
+  let x0 = Infinity, y0 = Infinity, x1 = -Infinity, y1 = -Infinity;
+  for (let i = 0; i < uv.length; i += 2) {
+    x0 = Math.min(x0, uv[i]!); x1 = Math.max(x1, uv[i]!);
+    y0 = Math.min(y0, uv[i + 1]!); y1 = Math.max(y1, uv[i + 1]!);
+  }
+  return [x0, y0, x1, y1];
+}
+
+/**
+ * Every patch's planar mesh, packed side by side (shelf packing by height), filled with the
+ * conformal factor (log area element 2u on one colour scale for all patches), with the input
+ * layout and the refined planar mesh as separate line sets.
+ */
+export function flatScene(patches: FlatPatch[]): FlatScene {
+  const group = new Group();
+  const scene: FlatScene = { group, fills: [], layoutLines: [], refinedLines: [], factorRange: [0, 0] };
+  const items = patches
+    .map((p) => ({ p, uv: p.layout?.uv ?? p.refined?.uv }))
+    .filter((x): x is { p: FlatPatch; uv: Float64Array } => !!x.uv && x.uv.length >= 6)
+    .map((x) => ({ ...x, box: box2(x.uv) }));
+  let fmin = Infinity, fmax = -Infinity;
+  for (const { p } of items) {
+    const f = p.layout?.factor ?? p.refined?.factor;
+    if (f) for (let i = 0; i < f.length; ++i) { fmin = Math.min(fmin, f[i]!); fmax = Math.max(fmax, f[i]!); }
+  }
+  scene.factorRange = Number.isFinite(fmin) ? [fmin, fmax] : [0, 0];
+  let area = 0, maxDim = 0;
+  for (const { box } of items) {
+    area += (box[2] - box[0]) * (box[3] - box[1]);
+    maxDim = Math.max(maxDim, box[2] - box[0], box[3] - box[1]);
+  }
+  const gap = 0.06 * Math.sqrt(area / Math.max(1, items.length));
+  const rowWidth = Math.max(maxDim, 1.6 * Math.sqrt(area));
+  const order = [...items].sort((a, b) => b.box[3] - b.box[1] - (a.box[3] - a.box[1]));
+  let x = 0, y = 0, rowH = 0;
+  const span = scene.factorRange[1] - scene.factorRange[0];
+  for (const { p, box } of order) {
+    const w = box[2] - box[0], h = box[3] - box[1];
+    if (x > 0 && x + w > rowWidth) { x = 0; y -= rowH + gap; rowH = 0; }
+    const dx = x - box[0], dy = y - box[3];
+    x += w + gap;
+    rowH = Math.max(rowH, h);
+    const fillSrc = p.layout ?? p.refined!;
+    const g = planarGeometry(fillSrc.uv, fillSrc.triangles, dx, dy);
+    const n = fillSrc.uv.length / 2;
+    const col = new Float32Array(3 * n);
+    const base = patchColor(p.id);
+    for (let i = 0; i < n; ++i) {
+      const c = fillSrc.factor ? ramp(span > 0 ? (fillSrc.factor[i]! - scene.factorRange[0]) / span : 0.5) : base;
+      col[3 * i] = c[0]; col[3 * i + 1] = c[1]; col[3 * i + 2] = c[2];
+    }
+    g.setAttribute('color', new BufferAttribute(col, 3));
+    g.userData.baseColors = col.slice();
+    const fill = new Mesh(g, new MeshBasicMaterial({ vertexColors: true, side: DoubleSide, polygonOffset: true, polygonOffsetFactor: 1, polygonOffsetUnits: 1 }));
+    fill.userData.patch = p.id;
+    group.add(fill);
+    scene.fills.push(fill);
+    if (p.layout) {
+      const lg = planarGeometry(p.layout.uv, p.layout.triangles, dx, dy);
+      const l = new LineSegments(new WireframeGeometry(lg), new LineBasicMaterial({ color: 0xffffff, transparent: true, opacity: 0.35 }));
+      lg.dispose();
+      l.userData.patch = p.id;
+      group.add(l);
+      scene.layoutLines.push(l);
+    }
+    if (p.refined) {
+      const rg = planarGeometry(p.refined.uv, p.refined.triangles, dx, dy);
+      const l = new LineSegments(new WireframeGeometry(rg), new LineBasicMaterial({ color: 0xff9a3c, transparent: true, opacity: 0.8 }));
+      rg.dispose();
+      l.position.z = 0.001;
+      l.userData.patch = p.id;
+      group.add(l);
+      scene.refinedLines.push(l);
+    }
+  }
+  return scene;
+}
+
+/** Dim every patch fill but the selected one. */
+export function paintFlat(scene: FlatScene, selected: number | undefined): void {
+  for (const fill of scene.fills) {
+    const attr = fill.geometry.getAttribute('color') as BufferAttribute;
+    const base = fill.geometry.userData.baseColors as Float32Array;
+    const c = attr.array as Float32Array;
+    const k = selected === undefined || fill.userData.patch === selected ? 1 : 0.3;
+    for (let i = 0; i < c.length; ++i) c[i] = base[i]! * k;
+    attr.needsUpdate = true;
+  }
+}

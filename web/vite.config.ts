@@ -1,0 +1,27 @@
+// Vite config of the demo page. The page imports the package exactly as a user would
+// ('conformesh', 'conformesh/three'); here those names resolve to the repository's built package
+// in ../dist (scripts/build.sh), so the page always runs the library built from this tree.
+import { fileURLToPath } from 'node:url';
+import { defineConfig } from 'vite';
+
+const dist = fileURLToPath(new URL('../dist/', import.meta.url));
+
+export default defineConfig({
+  root: fileURLToPath(new URL('.', import.meta.url)),
+  base: './',
+  resolve: {
+    alias: [
+      { find: /^conformesh\/three$/, replacement: `${dist}three.js` },
+      { find: /^conformesh$/, replacement: `${dist}index.js` },
+    ],
+  },
+  worker: { format: 'es' },
+  build: {
+    outDir: 'dist',
+    emptyOutDir: true,
+    target: 'es2022',
+    chunkSizeWarningLimit: 1500,
+  },
+  server: { host: '127.0.0.1' },
+  preview: { host: '127.0.0.1' },
+});
