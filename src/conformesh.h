@@ -9,3 +9,4 @@
 
 #include "core/mesh_buffers.h"
 #include "core/status.h"
+#include "conformal/flatten.h"

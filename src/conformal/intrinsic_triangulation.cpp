@@ -12,11 +12,7 @@ namespace {
 
 [[noreturn]] void reject(Code code, const std::string& msg) { fail(code, Stage::Flatten, msg); }
 
-// Horocycle arc at the origin of halfedge g inside its face (base decoration).
-double cornerHoro(const IntrinsicTriangulation& T, int g) {
-  using IT = IntrinsicTriangulation;
-  return std::exp(0.5 * (T.lambda[T.edge[IT::next(g)]] - T.lambda[T.edge[g]] - T.lambda[T.edge[IT::prev(g)]]));
-}
+double cornerHoro(const IntrinsicTriangulation& T, int g) { return T.cornerSize(g); }
 
 }  // namespace
 
@@ -26,7 +22,73 @@ bool IntrinsicTriangulation::canFlip(int e) const {
   return t >= 0 && t / 3 != h / 3;
 }
 
+double IntrinsicTriangulation::cornerSize(int g) const {
+  if (positionKind == PositionKind::Horocyclic)
+    return std::exp(0.5 * (lambda[edge[next(g)]] - lambda[edge[g]] - lambda[edge[prev(g)]]));
+  const int f = g / 3;
+  double lam[3] = {lambda[edge[3 * f]], lambda[edge[3 * f + 1]], lambda[edge[3 * f + 2]]};
+  double ang[3];
+  anglesFromLogLengths(lam, ang);
+  return ang[next(g) % 3];  // the corner at g's origin is opposite next(g)
+}
+
+void IntrinsicTriangulation::resetOrigins() {
+  for (int e = 0; e < nE; ++e) origin[e] = e;
+}
+
+void IntrinsicTriangulation::resetPositions(PositionKind kind) {
+  positionKind = kind;
+  const int nH = 3 * nF;
+  std::vector<int> start(nV, -1);
+  for (int h = 0; h < nH; ++h)
+    if (start[vert[h]] < 0 || twin[h] < 0) start[vert[h]] = h;
+  for (int v = 0; v < nV; ++v) {
+    int g = start[v], count = 0;
+    double acc = 0.0;
+    do {
+      horoPos[g] = acc;
+      acc += cornerSize(g);
+      const int p = twin[prev(g)];
+      if (p < 0) break;
+      g = p;
+    } while (g != start[v] && ++count <= nH);
+    horoTotal[v] = acc;
+  }
+}
+
+void IntrinsicTriangulation::flipEuclidean(int e) {
+  // Quad (a,b,c) + (b,a,d); lay it out with a = 0, b on the x axis, c above, d below.
+  const int h0 = edgeHalf[e], h1 = next(h0), h2 = next(h1);
+  const int t0 = twin[h0], t1 = next(t0), t2 = next(t1);
+  double angF[3], angG[3];
+  double lamF[3] = {lambda[edge[3 * (h0 / 3)]], lambda[edge[3 * (h0 / 3) + 1]], lambda[edge[3 * (h0 / 3) + 2]]};
+  double lamG[3] = {lambda[edge[3 * (t0 / 3)]], lambda[edge[3 * (t0 / 3) + 1]], lambda[edge[3 * (t0 / 3) + 2]]};
+  anglesFromLogLengths(lamF, angF);
+  anglesFromLogLengths(lamG, angG);
+  const double thA1 = angF[h1 % 3];  // at a in F, opposite b->c
+  const double thA2 = angG[t2 % 3];  // at a in G, opposite d->b
+  const double lac = std::exp(0.5 * lambda[edge[h2]]), lad = std::exp(0.5 * lambda[edge[t1]]);
+  const double cx = lac * std::cos(thA1), cy = lac * std::sin(thA1);
+  const double dx = lad * std::cos(thA2), dy = -lad * std::sin(thA2);
+  const double l2 = (cx - dx) * (cx - dx) + (cy - dy) * (cy - dy);
+  flipWithLambda(e, std::log(l2));
+}
+
 void IntrinsicTriangulation::flip(int e) {
+  const int h0 = edgeHalf[e];
+  const int h1 = next(h0), h2 = next(h1);
+  const int t0 = twin[h0];
+  const int t1 = next(t0), t2 = next(t1);
+  const double lac = lambda[edge[h2]], lbc = lambda[edge[h1]];
+  const double lad = lambda[edge[t1]], lbd = lambda[edge[t2]];
+  const double lab = lambda[e];
+  // Ptolemy in log form: lam_cd = 2 log(l_ac l_bd + l_ad l_bc) - lam_ab.
+  const double x = 0.5 * (lac + lbd), y = 0.5 * (lad + lbc);
+  const double mx = std::max(x, y);
+  flipWithLambda(e, 2.0 * (mx + std::log1p(std::exp(-std::fabs(x - y)))) - lab);
+}
+
+void IntrinsicTriangulation::flipWithLambda(int e, double lcd) {
   // Quad: face F0 = (a,b,c) with h0 = a->b, h1 = b->c, h2 = c->a; face F1 = (b,a,d) with
   // t0 = b->a, t1 = a->d, t2 = d->b. After the flip F0 = (d,c,a), F1 = (c,d,b).
   const int h0 = edgeHalf[e];
@@ -34,14 +96,6 @@ void IntrinsicTriangulation::flip(int e) {
   const int t0 = twin[h0];
   const int t1 = next(t0), t2 = next(t1);
   const int c = vert[h2], d = vert[t2];
-
-  const double lac = lambda[edge[h2]], lbc = lambda[edge[h1]];
-  const double lad = lambda[edge[t1]], lbd = lambda[edge[t2]];
-  const double lab = lambda[e];
-  // Ptolemy in log form: lam_cd = 2 log(l_ac l_bd + l_ad l_bc) - lam_ab.
-  const double x = 0.5 * (lac + lbd), y = 0.5 * (lad + lbc);
-  const double mx = std::max(x, y);
-  const double lcd = 2.0 * (mx + std::log1p(std::exp(-std::fabs(x - y)))) - lab;
 
   struct Half {
     int vert, twin, edge;
@@ -78,7 +132,7 @@ void IntrinsicTriangulation::flip(int e) {
   origin[e] = -1;
   edgeHalf[e] = h0;
 
-  // Horocyclic positions of the new halfedges: d->c follows d->b counter-clockwise at d inside
+  // Positions of the new halfedges: d->c follows d->b counter-clockwise at d inside
   // face (c,d,b); c->d follows c->a at c inside face (d,c,a).
   auto wrap = [&](int v, double p) {
     if (boundaryVertex[v]) return p;

@@ -29,8 +29,12 @@ struct IntrinsicTriangulation {
   std::vector<int> edgeHalf;    //!< per edge: one of its halfedges
   std::vector<double> lambda;   //!< per edge: base log length 2 log l (Penner coordinate)
   std::vector<int> origin;      //!< per edge: input edge index, -1 once flipped
-  std::vector<double> horoPos;  //!< per halfedge: horocyclic position at its origin vertex
-  std::vector<double> horoTotal;   //!< per vertex: horocycle length (interior: the period)
+  //! What the per-halfedge positions measure: horocycle arc length (decorated hyperbolic
+  //! metric, kept by Ptolemy flips) or angle (Euclidean metric, kept by Euclidean flips).
+  enum class PositionKind { Horocyclic, Angular };
+  PositionKind positionKind = PositionKind::Horocyclic;
+  std::vector<double> horoPos;  //!< per halfedge: position at its origin vertex, counter-clockwise
+  std::vector<double> horoTotal;   //!< per vertex: total (interior vertices: the period)
   std::vector<char> boundaryVertex;  //!< per vertex
   std::vector<std::vector<int>> loops;      //!< boundary loops: vertex sequences, domain on the left
   std::vector<std::vector<int>> loopEdges;  //!< loops[k][i] -> loops[k][i+1] edge index
@@ -47,6 +51,19 @@ struct IntrinsicTriangulation {
 
   //! Flip the interior edge e (Ptolemy). Precondition: canFlip(e).
   void flip(int e);
+  //! Flip the interior edge e keeping the Euclidean metric (u = 0): the new length is the
+  //! quad's other diagonal. Precondition: canFlip(e) and the quad is convex (true for a
+  //! non-Delaunay edge).
+  void flipEuclidean(int e);
+  //! Size of the corner of g's face at g's origin, in the current position kind.
+  double cornerSize(int g) const;
+  //! Recompute all positions from scratch in the given kind; boundary vertices start at their
+  //! boundary halfedge, interior ones at an arbitrary outgoing halfedge.
+  void resetPositions(PositionKind kind);
+  //! Declare the current triangulation the reference: origin[e] = e for all edges.
+  void resetOrigins();
+  //! Flip e, giving the new edge the log length lcd (connectivity and positions only).
+  void flipWithLambda(int e, double lcd);
   //! Interior edge whose two sides are different faces.
   bool canFlip(int e) const;
 };

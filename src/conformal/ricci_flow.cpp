@@ -323,7 +323,7 @@ std::vector<double> vertexCurvature(const IT& T, const std::vector<double>& angl
   return sum;
 }
 
-long long flipToDelaunay(IT& T, const std::vector<double>& u, long long maxFlips) {
+long long flipToDelaunay(IT& T, const std::vector<double>& u, long long maxFlips, bool euclidean) {
   constexpr double tol = 1e-12;
   std::vector<int> stack;
   stack.reserve(T.nE);
@@ -341,7 +341,10 @@ long long flipToDelaunay(IT& T, const std::vector<double>& u, long long maxFlips
     if (!T.canFlip(e) || edgeIsDelaunay(T, e, u, tol)) continue;
     if (done >= maxFlips)
       fail(Code::IterationLimit, Stage::Flatten, "flatten: Delaunay flips exceeded their cap (" + std::to_string(maxFlips) + ")");
-    T.flip(e);
+    if (euclidean)
+      T.flipEuclidean(e);
+    else
+      T.flip(e);
     ++done;
     const int h = T.edgeHalf[e], t = T.twin[h];
     const int sides[4] = {IT::next(h), IT::prev(h), IT::next(t), IT::prev(t)};

@@ -65,8 +65,11 @@ int computeAngles(const IntrinsicTriangulation& T, const std::vector<double>& u,
 std::vector<double> vertexCurvature(const IntrinsicTriangulation& T, const std::vector<double>& angle);
 
 //! Flip until every interior edge is Delaunay for the metric u (opposite angles sum <= pi).
+//! Ptolemy flips by default; `euclidean` flips keep the PL metric (u must be 0), as for the
+//! intrinsic Delaunay triangulation of the input (Gillespie–Springborn–Crane 2021 start from it,
+//! which makes the result independent of how a flat region was triangulated).
 //! Returns the flips done; throws IterationLimit above `maxFlips`.
-long long flipToDelaunay(IntrinsicTriangulation& T, const std::vector<double>& u, long long maxFlips);
+long long flipToDelaunay(IntrinsicTriangulation& T, const std::vector<double>& u, long long maxFlips, bool euclidean = false);
 
 //! Whether every flippable interior edge satisfies the Delaunay condition (tolerance 1e-9 rad).
 bool isDelaunay(const IntrinsicTriangulation& T, const std::vector<double>& u);
