@@ -10,3 +10,5 @@
 #include "core/mesh_buffers.h"
 #include "core/status.h"
 #include "conformal/flatten.h"
+#include "mesh/mesh_io.h"
+#include "mesh/weld_vertices.h"
