@@ -55,7 +55,78 @@ void distortion(const MeshBuffers& M, const std::vector<double>& uv, FlattenRepo
 
 }  // namespace
 
+std::vector<std::pair<uint32_t, double>> detectCorners(const MeshBuffers& patch, double threshold) {
+  using namespace conformal;
+  IntrinsicTriangulation T = buildIntrinsicTriangulation(patch);
+  std::vector<double> angle, u(T.nV, 0.0);
+  computeAngles(T, u, angle);
+  std::vector<double> sum(T.nV, 0.0);
+  for (int h = 0; h < 3 * T.nF; ++h) sum[T.vert[IntrinsicTriangulation::prev(h)]] += angle[h];
+  size_t outer = 0;
+  double best = -1;
+  for (size_t k = 0; k < T.loops.size(); ++k) {
+    double len = 0;
+    for (int e : T.loopEdges[k]) len += std::exp(0.5 * T.lambda[e]);
+    if (len > best) {
+      best = len;
+      outer = k;
+    }
+  }
+  std::vector<std::pair<uint32_t, double>> corners;
+  for (int v : T.loops[outer])
+    if (std::fabs(sum[v] - kPi) > threshold) corners.emplace_back(uint32_t(v), sum[v]);
+  return corners;
+}
+
+namespace {
+FlatPatch flattenCompact(const MeshBuffers& patch, const FlattenOptions& options, const ProgressFn& progress);
+}
+
 FlatPatch flatten(const MeshBuffers& patch, const FlattenOptions& options, ProgressFn progress) {
+  // Vertices no face uses carry no metric: flatten without them and give them uv = (0, 0).
+  const size_t nV = patch.vertexCount();
+  std::vector<int> newId(nV, -1);
+  for (uint32_t v : patch.triangles)
+    if (v < nV) newId[v] = 0;
+  size_t used = 0;
+  for (size_t v = 0; v < nV; ++v)
+    if (newId[v] == 0) newId[v] = int(used++);
+  if (used == nV || patch.positions.size() != 3 * nV) return flattenCompact(patch, options, progress);
+  MeshBuffers compact;
+  std::vector<uint32_t> oldId(used);
+  compact.positions.resize(3 * used);
+  for (size_t v = 0; v < nV; ++v)
+    if (newId[v] >= 0) {
+      oldId[newId[v]] = uint32_t(v);
+      for (int k = 0; k < 3; ++k) compact.positions[3 * newId[v] + k] = patch.positions[3 * v + k];
+    }
+  compact.triangles.resize(patch.triangles.size());
+  for (size_t i = 0; i < patch.triangles.size(); ++i)
+    compact.triangles[i] = patch.triangles[i] < nV ? uint32_t(newId[patch.triangles[i]]) : patch.triangles[i];
+  FlattenOptions o = options;
+  for (auto& c : o.corners)
+    if (c.first < nV && newId[c.first] >= 0) c.first = uint32_t(newId[c.first]);
+  FlatPatch P = flattenCompact(compact, o, progress);
+  std::vector<double> uv(2 * nV, 0.0), u(nV, 0.0), pos(3 * nV, 0.0);
+  for (size_t w = 0; w < used; ++w) {
+    uv[2 * oldId[w]] = P.uv[2 * w];
+    uv[2 * oldId[w] + 1] = P.uv[2 * w + 1];
+    u[oldId[w]] = P.u[w];
+    for (int k = 0; k < 3; ++k) pos[3 * oldId[w] + k] = P.layout.positions[3 * w + k];
+  }
+  P.uv = std::move(uv);
+  P.u = std::move(u);
+  P.layout.positions = std::move(pos);
+  P.layout.uvs = P.uv;
+  for (auto& t : P.layout.triangles) t = oldId[t];
+  for (auto& loop : P.boundaryLoops)
+    for (auto& v : loop) v = oldId[v];
+  // The pull-back reports face indices (unchanged) and positions (same values): nothing to map.
+  return P;
+}
+
+namespace {
+FlatPatch flattenCompact(const MeshBuffers& patch, const FlattenOptions& options, const ProgressFn& progress) {
   using namespace conformal;
   const auto t0 = Clock::now();
   IntrinsicTriangulation T = buildIntrinsicTriangulation(patch);
@@ -65,7 +136,8 @@ FlatPatch flatten(const MeshBuffers& patch, const FlattenOptions& options, Progr
   T.resetPositions(IntrinsicTriangulation::PositionKind::Angular);
   IntrinsicTriangulation Tin, TdAngular, Td;
   if (options.pullback) Tin = T;
-  const long long euclideanFlips = conformal::flipToDelaunay(T, std::vector<double>(T.nV, 0.0), 200LL * T.nE + 10000, true);
+  const long long euclideanFlips =
+      options.flips ? conformal::flipToDelaunay(T, std::vector<double>(T.nV, 0.0), 200LL * T.nE + 10000, true) : 0;
   if (options.pullback) TdAngular = T;
   T.resetOrigins();
   T.resetPositions(IntrinsicTriangulation::PositionKind::Horocyclic);
@@ -171,5 +243,6 @@ FlatPatch flatten(const MeshBuffers& patch, const FlattenOptions& options, Progr
   if (progress && !progress(Stage::Flatten, 1.0)) fail(Code::Cancelled, Stage::Flatten, "flatten: cancelled");
   return out;
 }
+}  // namespace
 
 }  // namespace conformesh

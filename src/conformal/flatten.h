@@ -76,4 +76,9 @@ struct FlatPatch {
 //! NumericalFailure, Cancelled.
 FlatPatch flatten(const MeshBuffers& patch, const FlattenOptions& options = {}, ProgressFn progress = {});
 
+//! Corners for BoundaryCondition::Corners: the vertices of the outer boundary loop (the longest)
+//! whose 3D interior angle differs from pi by more than `threshold` radians, with that angle as
+//! their target. Throws conformesh::Error (stage Flatten) on invalid input, like flatten().
+std::vector<std::pair<uint32_t, double>> detectCorners(const MeshBuffers& patch, double threshold);
+
 }  // namespace conformesh

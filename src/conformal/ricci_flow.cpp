@@ -263,7 +263,9 @@ FlowResult Flow::run() {
     double d0 = 0.0;
     for (int i = 0; i < nFree_; ++i) d0 += grad_[i] * delta[i];
     if (!std::isfinite(d0) || d0 >= 0.0)
-      fail(Code::NumericalFailure, Stage::Flatten, "flatten: the Newton direction is not a descent direction");
+      fail(Code::NotConverged, Stage::Flatten,
+           "flatten: the Hessian lost positive definiteness at error " + std::to_string(err) +
+               " (boundary triangles degenerate: boundary edges cannot be flipped; the boundary targets may be infeasible)");
     uOld = u_;
     double t = 1.0;
     int halvings = 0;
