@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <complex>
 #include <string>
 
 #include "conformal/intrinsic_triangulation.h"
@@ -126,6 +127,76 @@ FlatPatch flatten(const MeshBuffers& patch, const FlattenOptions& options, Progr
 }
 
 namespace {
+// The circle solutions form a family: Möbius automorphisms of the disk map one solution to
+// another, exactly (|f(p) - f(q)|^2 = |f'(p)| |f'(q)| |p - q|^2, circles stay circles and disk
+// interiors stay inside, so the triangulation stays Delaunay and u changes by log |f'|). Pick
+// the member whose 3D-area-weighted vertex centroid is the disk's centre (least distortion in
+// practice), then restore the 3D area and lay out again.
+void balanceMobius(const conformal::IntrinsicTriangulation& T, const MeshBuffers& patch, int outerLoop,
+                   conformal::LayoutResult& L, std::vector<double>& u) {
+  using C = std::complex<double>;
+  const auto& loop = T.loops[outerLoop];
+  const size_t n = loop.size();
+  if (n < 3) return;
+  const C a(L.xy[2 * loop[0]], L.xy[2 * loop[0] + 1]), b(L.xy[2 * loop[n / 3]], L.xy[2 * loop[n / 3] + 1]),
+      c(L.xy[2 * loop[2 * n / 3]], L.xy[2 * loop[2 * n / 3] + 1]);
+  const C ba = b - a, ca = c - a;
+  const double d = 2 * (ba.real() * ca.imag() - ba.imag() * ca.real());
+  if (!(std::fabs(d) > 0)) return;
+  const C centre = a + C((ca.imag() * std::norm(ba) - ba.imag() * std::norm(ca)) / d,
+                         (ba.real() * std::norm(ca) - ca.real() * std::norm(ba)) / d);
+  const double R = std::abs(a - centre);
+  std::vector<double> w(T.nV, 0.0);
+  for (size_t f = 0; f < patch.triangleCount(); ++f) {
+    const double* p0 = &patch.positions[3 * size_t(patch.triangles[3 * f])];
+    const double* p1 = &patch.positions[3 * size_t(patch.triangles[3 * f + 1])];
+    const double* p2 = &patch.positions[3 * size_t(patch.triangles[3 * f + 2])];
+    const double e1[3] = {p1[0] - p0[0], p1[1] - p0[1], p1[2] - p0[2]}, e2[3] = {p2[0] - p0[0], p2[1] - p0[1], p2[2] - p0[2]};
+    const double A = 0.5 * std::hypot(e1[1] * e2[2] - e1[2] * e2[1], e1[2] * e2[0] - e1[0] * e2[2], e1[0] * e2[1] - e1[1] * e2[0]);
+    for (int k = 0; k < 3; ++k) w[patch.triangles[3 * f + k]] += A / 3;
+  }
+  std::vector<C> z(T.nV);
+  for (int v = 0; v < T.nV; ++v) z[v] = (C(L.xy[2 * v], L.xy[2 * v + 1]) - centre) / R;
+  std::vector<double> du(T.nV, 0.0);
+  for (int it = 0; it < 50; ++it) {
+    C m(0, 0);
+    double W = 0;
+    for (int v = 0; v < T.nV; ++v) {
+      m += w[v] * z[v];
+      W += w[v];
+    }
+    m /= W;
+    if (std::abs(m) < 1e-10) break;
+    if (std::abs(m) > 0.5) m *= 0.5 / std::abs(m);
+    const double s = 1 - std::norm(m);
+    for (int v = 0; v < T.nV; ++v) {
+      const C q = 1.0 - std::conj(m) * z[v];
+      du[v] += std::log(s) - 2 * std::log(std::abs(q));
+      z[v] = (z[v] - m) / q;
+    }
+  }
+  std::vector<double> u2 = u;
+  for (int v = 0; v < T.nV; ++v) u2[v] += du[v];
+  double a2 = 0, a3 = 0;
+  for (double x : w) a3 += x;
+  for (int f = 0; f < T.nF; ++f) {
+    double lam[3], ang[3];
+    for (int k = 0; k < 3; ++k) lam[k] = T.scaledLambda(3 * f + k, u2);
+    conformal::anglesFromLogLengths(lam, ang);
+    a2 += 0.5 * std::exp(0.5 * (lam[1] + lam[2])) * std::sin(ang[0]);
+  }
+  const double shift = 0.5 * std::log(a3 / a2);
+  if (!std::isfinite(shift)) return;
+  for (double& x : u2) x += shift;
+  conformal::LayoutResult L2 = conformal::layoutFlat(T, u2);
+  if (L2.invertedTriangles <= L.invertedTriangles && L2.boundaryCrossings <= L.boundaryCrossings) {
+    L = std::move(L2);
+    u = std::move(u2);
+  }
+}
+}  // namespace
+
+namespace {
 FlatPatch flattenCompact(const MeshBuffers& patch, const FlattenOptions& options, const ProgressFn& progress) {
   using namespace conformal;
   const auto t0 = Clock::now();
@@ -193,14 +264,17 @@ FlatPatch flattenCompact(const MeshBuffers& patch, const FlattenOptions& options
 
   const auto t1 = Clock::now();
   LayoutResult L = layoutFlat(T, u);
+  if (fo.boundary == BoundaryCondition::Circle && options.balanceMobius && L.invertedTriangles == 0)
+    balanceMobius(T, patch, flow.outerLoop, L, u);
   R.secondsLayout = since(t1);
   R.invertedTriangles = L.invertedTriangles;
   R.boundaryCrossings = L.boundaryCrossings;
   R.layoutLengthError = L.maxEdgeLengthError;
-  if (options.requireValidLayout && (L.invertedTriangles > 0 || L.boundaryCrossings > 0))
+  if (options.requireValidLayout && (L.invertedTriangles > 0 || L.boundaryCrossings > 0 || !(L.maxEdgeLengthError <= 1e-3)))
     fail(Code::NumericalFailure, Stage::Flatten,
-         "flatten: the layout has " + std::to_string(L.invertedTriangles) + " inverted triangles and " +
-             std::to_string(L.boundaryCrossings) + " boundary crossings (area distortion too large for double precision: " +
+         "flatten: the layout has " + std::to_string(L.invertedTriangles) + " inverted triangles, " +
+             std::to_string(L.boundaryCrossings) + " boundary crossings and a relative edge length error of " +
+             std::to_string(L.maxEdgeLengthError) + " (area distortion too large for double precision: " +
              "try the free boundary or split the patch)");
 
   out.uv = L.xy;

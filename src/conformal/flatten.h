@@ -31,6 +31,9 @@ struct FlattenOptions {
   //! Throw Code::NumericalFailure when the layout has inverted triangles or crossing boundary
   //! loops (default); false returns the result with the counts in the report.
   bool requireValidLayout = true;
+  //! Circle: among the Möbius-equivalent solutions, return the one whose 3D-area-weighted
+  //! vertex centroid is the disk centre (fixed-point iteration; lowers the area distortion).
+  bool balanceMobius = true;
 };
 
 struct FlattenReport {
