@@ -9,3 +9,10 @@
 
 #include "core/mesh_buffers.h"
 #include "core/status.h"
+#include "mesh/halfedge_mesh.h"
+#include "mesh/mesh_geometry.h"
+#include "mesh/mesh_io.h"
+#include "mesh/primitives.h"
+#include "mesh/topology.h"
+#include "mesh/validate.h"
+#include "mesh/weld_vertices.h"

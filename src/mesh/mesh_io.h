@@ -2,8 +2,20 @@
 //
 // Readers work on bytes (no file system needed: the same code runs in WASM). The format is
 // detected from the content, with the file name's extension as a hint. Errors throw
-// conformesh::Error with Code::ParseError (message gives the line, or the byte offset for binary
-// formats), Code::EmptyMesh, Code::IndexOutOfRange or Code::NonFiniteCoordinate, stage Read.
+// conformesh::Error, stage Read:
+//   ParseError           the bytes are not a valid file of the format; the message gives the line
+//                        (text formats, 1-based) or the byte offset (binary formats, 0-based).
+//                        Also: a face with fewer than 3 vertices, an unrecognised format, a
+//                        truncated binary STL (size != 84 + 50·n).
+//   EmptyMesh            no vertices or no faces.
+//   IndexOutOfRange      a face refers to a vertex that does not exist (OBJ: also index 0).
+//   NonFiniteCoordinate  a NaN / infinite coordinate (text "nan", "inf", "1e999" included).
+//   TooLarge             a header count (OFF, PLY) cannot fit in the remaining bytes, or the mesh
+//                        would have more than 2^32 - 2 vertices. Checked before anything is
+//                        allocated from the count.
+//   InvalidArgument      a bad option (negative or NaN weld tolerance, unknown forced format).
+// Degenerate faces (repeated indices, zero area) are kept: validation (mesh/validate) drops them.
+// Vertices are kept as in the file, including vertices no face uses (except after welding).
 #pragma once
 
 #include <cstddef>
@@ -19,37 +31,62 @@ enum class MeshFormat { Auto, Obj, Off, StlAscii, StlBinary, PlyAscii, PlyBinary
 
 //! "obj", "off", "stl-ascii", "stl", "ply-ascii", "ply", "ply-be", "auto".
 const char* formatName(MeshFormat f);
-//! Parse a format name as above, or a file extension ("obj", ".stl", "PLY"); Auto if unknown.
+//! Parse a format name as above, or a file extension / file name ("obj", ".stl", "PLY",
+//! "dir/bunny.off"); Auto if unknown. For "stl" and "ply" extensions the answer is the binary
+//! variant; readers accept either variant whatever was given.
 MeshFormat formatFromName(const std::string& nameOrExtension);
 
+//! Detect the format from the content alone (Auto when unrecognised). Order: "ply" magic (the
+//! header's format line gives the variant); binary STL when the size is exactly 84 + 50·n with n
+//! the header's triangle count (even when the 80-byte header begins with "solid"); "solid" → ascii
+//! STL; an OFF header keyword ([ST][C][N][4][n]OFF) → OFF; a first OBJ keyword (v, vt, vn, f, o,
+//! g, s, usemtl, mtllib, ...) → OBJ.
+MeshFormat detectFormat(const uint8_t* data, size_t size);
+
 struct ReadOptions {
-  MeshFormat format = MeshFormat::Auto;  //!< Auto: detect from content, then `fileName`'s extension
-  std::string fileName;                  //!< only a hint for detection and for messages
-  //! STL has no shared vertices: exactly equal positions are always welded. A tolerance > 0 also
-  //! welds vertices closer than it (absolute units). Applies to every format when > 0.
+  //! Auto: detect from the content, then from `fileName`'s extension. A forced format is read as
+  //! that format (for PLY the header decides ascii / binary; StlBinary also accepts trailing
+  //! bytes after the last triangle, with a warning).
+  MeshFormat format = MeshFormat::Auto;
+  std::string fileName;  //!< only a hint for detection and a prefix for messages
+  //! STL stores no shared vertices: exactly equal positions are always welded (on the exact bits,
+  //! -0 == +0; vertex order = first appearance). A tolerance > 0 (absolute length units) also
+  //! welds, in every format, each vertex to the first earlier kept vertex within that Euclidean
+  //! distance (grid hashing, deterministic). 0: no tolerance weld.
   double weldTolerance = 0.0;
-  bool readUvs = true;  //!< OBJ vt: kept when every used vertex has exactly one vt
+  //! OBJ `vt` / PLY u,v (or s,t / texture_u,texture_v) vertex properties into mesh.uvs. OBJ uvs
+  //! are kept only when every vertex used by a face has exactly one vt (else dropped, warning).
+  bool readUvs = true;
 };
 
 struct ReadResult {
-  MeshBuffers mesh;                   //!< triangles (polygons fan-triangulated)
+  MeshBuffers mesh;                      //!< triangles (polygons fan-triangulated: 0,i,i+1)
   MeshFormat format = MeshFormat::Auto;  //!< the format actually read
-  std::vector<std::string> warnings;  //!< non-fatal findings (welded vertices, skipped elements)
+  std::vector<std::string> warnings;     //!< non-fatal findings (welded vertices, dropped uvs)
 };
 
-//! Read a mesh from bytes. Throws conformesh::Error (stage Read) on failure.
+//! Read a mesh from bytes. Throws conformesh::Error (stage Read) as listed at the top of this file.
+//! Memory and time are O(size of the input): no count from a header is trusted before it is
+//! checked against the bytes that remain.
 ReadResult readMesh(const uint8_t* data, size_t size, const ReadOptions& options = {});
 inline ReadResult readMesh(const std::vector<uint8_t>& bytes, const ReadOptions& options = {}) {
   return readMesh(bytes.data(), bytes.size(), options);
 }
 
 struct WriteOptions {
-  bool writeUvs = true;  //!< OBJ: write `vt` (and f a/a) when mesh.uvs is non-empty
+  //! OBJ: write `vt` and `f a/a b/b c/c` when mesh.uvs is non-empty. PLY: write u, v vertex
+  //! properties (double). Ignored by OFF and STL.
+  bool writeUvs = true;
 };
 
-//! Write a mesh. Supported: Obj, Off, StlAscii, StlBinary, PlyBinaryLE (PlyAscii too).
-//! Text formats write positions with 17 significant digits: reading back gives the same doubles.
-//! Throws conformesh::Error (stage Write) for unsupported formats or invalid buffers.
+//! Write a mesh. Supported: Obj, Off, StlAscii, StlBinary, PlyBinaryLE, PlyBinaryBE, PlyAscii.
+//! Text formats write each coordinate in the shortest of 15, 16 or 17 significant digits that
+//! reads back to the same double: a round trip gives bit-identical positions. PLY binary writes
+//! doubles (exact). Binary STL stores 32-bit floats by definition: it is the one lossy writer
+//! (round trip exact only for float-representable positions). STL stores no indices: reading it
+//! back welds equal positions, so vertices come back in first-appearance order.
+//! Throws conformesh::Error, stage Write: InvalidArgument (Auto or bad buffer sizes),
+//! IndexOutOfRange, NonFiniteCoordinate, TooLarge (binary STL with more than 2^32 - 1 triangles).
 std::vector<uint8_t> writeMesh(const MeshBuffers& mesh, MeshFormat format, const WriteOptions& options = {});
 
 }  // namespace conformesh
