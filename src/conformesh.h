@@ -9,6 +9,7 @@
 
 #include "core/mesh_buffers.h"
 #include "core/status.h"
+#include "conformal/flatten.h"
 #include "mesh/halfedge_mesh.h"
 #include "mesh/mesh_geometry.h"
 #include "mesh/mesh_io.h"

@@ -4,6 +4,7 @@
 #include <cstddef>
 #include <cstdint>
 #include <cstring>
+#include <functional>
 #include <string>
 #include <vector>
 
@@ -113,8 +114,10 @@ class TextScanner {
 //! (same bits, -0 == +0) become one vertex, numbered by first appearance. Fills mesh.positions and
 //! mesh.triangles.
 void weldSoupExact(const std::vector<double>& soup, MeshBuffers& mesh);
-//! The same for 32-bit float coordinates (binary STL); positions converted to double.
-void weldSoupExactFloat(const std::vector<float>& soup, MeshBuffers& mesh);
+//! The same for binary STL records (50 bytes each, vertices at bytes 12..47 as float32), read in
+//! place. Calls nonFinite(triangle, value 0..8) for a NaN / infinite value (it must throw).
+void weldBinaryStlRecords(const uint8_t* records, size_t triangles, MeshBuffers& mesh,
+                          const std::function<void(size_t, int)>& nonFinite);
 
 //! Content checks used by detectFormat (they look at the first few KB only).
 bool looksLikeOff(const uint8_t* data, size_t size);

@@ -101,8 +101,8 @@ bool parseInt(const char* b, const char* e, int64_t& out) {
   int64_t v = 0;
   for (; p < e; ++p) {
     if (!isDigit(*p)) return false;
+    if (v > ((int64_t(1) << 62) - (*p - '0')) / 10) return false;
     v = v * 10 + (*p - '0');
-    if (v > (int64_t(1) << 62)) return false;
   }
   out = neg ? -v : v;
   return true;

@@ -50,16 +50,9 @@ void readStlBinary(const Source& src, const ReadOptions&, ReadResult& result) {
   }
   if (3 * n > kMaxVertices) src.failPlain(Code::TooLarge, "too many triangles");
 
-  std::vector<float> soup(size_t(n) * 9);
-  const uint8_t* rec = src.data + 84;
-  float* out = soup.data();
-  for (uint64_t t = 0; t < n; ++t, rec += 50, out += 9) {
-    std::memcpy(out, rec + 12, 36);  // little-endian float32 on every target we build for
-    for (int k = 0; k < 9; ++k)
-      if (!std::isfinite(out[k]))
-        src.failOffset(Code::NonFiniteCoordinate, 84 + 50 * t + 12 + 4 * uint64_t(k), "non-finite coordinate");
-  }
-  weldSoupExactFloat(soup, result.mesh);
+  weldBinaryStlRecords(src.data + 84, size_t(n), result.mesh, [&](size_t t, int k) {
+    src.failOffset(Code::NonFiniteCoordinate, 84 + 50 * uint64_t(t) + 12 + 4 * uint64_t(k), "non-finite coordinate");
+  });
 }
 
 void readStlAscii(const Source& src, const ReadOptions&, ReadResult& result) {

@@ -4,6 +4,7 @@
 
 #include <cmath>
 #include <cstring>
+#include <functional>
 #include <string>
 #include <unordered_map>
 #include <vector>
@@ -72,72 +73,97 @@ std::vector<uint32_t> firstEqual(size_t n, HashOf hashOf, Same same) {
   return first;
 }
 
-// From "first equal item" per corner: vertices numbered by first appearance.
-template <class Emit>
-void numberByFirstAppearance(const std::vector<uint32_t>& first, std::vector<uint32_t>& triangles,
-                             Emit emitVertex) {
-  const size_t n = first.size();
-  triangles.resize(n);
-  std::vector<uint32_t> vertexOf(n, kEmpty);
-  uint32_t next = 0;
-  for (size_t i = 0; i < n; ++i) {
-    uint32_t f = first[i];
-    if (vertexOf[f] == kEmpty) {
-      vertexOf[f] = next++;
-      emitVertex(f);
-    }
-    triangles[i] = vertexOf[f];
+}  // namespace
+
+namespace {
+
+// Exact-position vertex table for triangle soups: positions are numbered in first-appearance
+// order as they are inserted. Open addressing with linear probing, load <= 1/2, grows by doubling.
+template <class T>
+class SoupWelder {
+ public:
+  explicit SoupWelder(size_t expectedVertices) {
+    slots_.assign(tableSize(expectedVertices), kEmpty);
+    uniq_.reserve(3 * expectedVertices);
   }
-}
+  //! Vertex id of position p; callers pass -0 as +0 (equal values must hash equally).
+  uint32_t insert(const T p[3]) {
+    const size_t mask = slots_.size() - 1;
+    size_t s = size_t(hash(p)) & mask;
+    while (true) {
+      const uint32_t id = slots_[s];
+      if (id == kEmpty) break;
+      const T* q = &uniq_[3 * size_t(id)];
+      if (q[0] == p[0] && q[1] == p[1] && q[2] == p[2]) return id;
+      s = (s + 1) & mask;
+    }
+    const uint32_t id = uint32_t(uniq_.size() / 3);
+    if (id >= io_detail::kMaxVertices) fail(Code::TooLarge, Stage::Read, "too many vertices");
+    uniq_.insert(uniq_.end(), p, p + 3);
+    slots_[s] = id;
+    if (2 * (size_t(id) + 1) > slots_.size()) grow();
+    return id;
+  }
+  void positionsTo(std::vector<double>& out) const { out.assign(uniq_.begin(), uniq_.end()); }
+
+ private:
+  static uint64_t hash(const T p[3]) {
+    if constexpr (sizeof(T) == 4) {
+      uint64_t a = uint64_t(floatBits(p[0])) | (uint64_t(floatBits(p[1])) << 32);
+      return fmix64(a ^ (uint64_t(floatBits(p[2])) * 0x9E3779B97F4A7C15ull));
+    } else {
+      return fmix64(doubleBits(p[0]) ^ fmix64(doubleBits(p[1]) ^ fmix64(doubleBits(p[2]))));
+    }
+  }
+  void grow() {
+    std::vector<uint32_t> bigger(2 * slots_.size(), kEmpty);
+    const size_t mask = bigger.size() - 1;
+    const size_t n = uniq_.size() / 3;
+    for (size_t id = 0; id < n; ++id) {
+      size_t s = size_t(hash(&uniq_[3 * id])) & mask;
+      while (bigger[s] != kEmpty) s = (s + 1) & mask;
+      bigger[s] = uint32_t(id);
+    }
+    slots_.swap(bigger);
+  }
+
+  std::vector<uint32_t> slots_;
+  std::vector<T> uniq_;
+};
 
 }  // namespace
 
 namespace io_detail {
 
 void weldSoupExact(const std::vector<double>& soup, MeshBuffers& mesh) {
-  const size_t n = soup.size() / 3;
-  if (n > kMaxVertices) fail(Code::TooLarge, Stage::Read, "too many triangle corners");
-  const double* s = soup.data();
-  auto hashOf = [s](size_t i) {
-    const double* p = s + 3 * i;
-    return fmix64(doubleBits(p[0]) ^ fmix64(doubleBits(p[1]) ^ fmix64(doubleBits(p[2]))));
-  };
-  auto same = [s](size_t a, size_t b) {
-    const double* p = s + 3 * a;
-    const double* q = s + 3 * b;
-    return p[0] == q[0] && p[1] == q[1] && p[2] == q[2];
-  };
-  std::vector<uint32_t> first = firstEqual(n, hashOf, same);
-  mesh.positions.clear();
-  numberByFirstAppearance(first, mesh.triangles, [&](uint32_t f) {
-    const double* p = s + 3 * size_t(f);
-    mesh.positions.insert(mesh.positions.end(), p, p + 3);
-  });
+  const size_t corners = soup.size() / 3;
+  if (corners > kMaxVertices) fail(Code::TooLarge, Stage::Read, "too many triangle corners");
+  SoupWelder<double> w(corners / 6 + 16);
+  mesh.triangles.resize(corners);
+  for (size_t c = 0; c < corners; ++c) {
+    const double p[3] = {soup[3 * c] + 0.0, soup[3 * c + 1] + 0.0, soup[3 * c + 2] + 0.0};  // -0 -> +0
+    mesh.triangles[c] = w.insert(p);
+  }
+  w.positionsTo(mesh.positions);
 }
 
-void weldSoupExactFloat(const std::vector<float>& soup, MeshBuffers& mesh) {
-  const size_t n = soup.size() / 3;
-  if (n > kMaxVertices) fail(Code::TooLarge, Stage::Read, "too many triangle corners");
-  const float* s = soup.data();
-  auto hashOf = [s](size_t i) {
-    const float* p = s + 3 * i;
-    uint64_t a = uint64_t(floatBits(p[0])) | (uint64_t(floatBits(p[1])) << 32);
-    return fmix64(a ^ (uint64_t(floatBits(p[2])) * 0x9E3779B97F4A7C15ull));
-  };
-  auto same = [s](size_t a, size_t b) {
-    const float* p = s + 3 * a;
-    const float* q = s + 3 * b;
-    return p[0] == q[0] && p[1] == q[1] && p[2] == q[2];
-  };
-  std::vector<uint32_t> first = firstEqual(n, hashOf, same);
-  mesh.positions.clear();
-  mesh.positions.reserve(n);  // typical closed meshes: about n / 6 vertices; grows if needed
-  numberByFirstAppearance(first, mesh.triangles, [&](uint32_t f) {
-    const float* p = s + 3 * size_t(f);
-    mesh.positions.push_back(double(p[0]));
-    mesh.positions.push_back(double(p[1]));
-    mesh.positions.push_back(double(p[2]));
-  });
+void weldBinaryStlRecords(const uint8_t* records, size_t triangles, MeshBuffers& mesh,
+                          const std::function<void(size_t, int)>& nonFinite) {
+  if (3 * uint64_t(triangles) > kMaxVertices) fail(Code::TooLarge, Stage::Read, "too many triangles");
+  // A closed triangle mesh has about triangles / 2 vertices.
+  SoupWelder<float> w(triangles / 2 + 16);
+  mesh.triangles.resize(3 * triangles);
+  const uint8_t* rec = records;
+  for (size_t t = 0; t < triangles; ++t, rec += 50) {
+    float v[9];
+    std::memcpy(v, rec + 12, 36);  // little-endian float32 on every target we build for
+    for (int k = 0; k < 9; ++k) {
+      if (!std::isfinite(v[k])) nonFinite(t, k);
+      v[k] += 0.0f;  // -0 -> +0
+    }
+    for (int c = 0; c < 3; ++c) mesh.triangles[3 * t + c] = w.insert(v + 3 * c);
+  }
+  w.positionsTo(mesh.positions);
 }
 
 }  // namespace io_detail
