@@ -17,3 +17,7 @@
 #include "mesh/topology.h"
 #include "mesh/validate.h"
 #include "mesh/weld_vertices.h"
+#include "planar/cdt.h"
+#include "planar/poly_io.h"
+#include "planar/refine.h"
+#include "remesh/remesh.h"

@@ -1,0 +1,83 @@
+// conformesh — planar Delaunay refinement (stage refine).
+#pragma once
+
+#include <cstddef>
+#include <functional>
+#include <vector>
+
+#include "core/mesh_buffers.h"
+#include "core/status.h"
+#include "planar/cdt.h"
+
+namespace conformesh::planar {
+
+//! Options of refinePslg. Sizes are in the units of the input coordinates.
+struct RefineOptions {
+  //! Angle bound θ in degrees: every triangle that is not exempt gets its smallest angle ≥ θ.
+  //! Range [0, 34]; 0 switches the angle criterion off (size only).
+  double minAngleDeg = 30.0;
+  //! Largest allowed triangle area (Triangle's -a). 0: no area bound.
+  double maxArea = 0.0;
+  //! Largest allowed edge length: a triangle is split while its longest edge exceeds
+  //! the size h at its centroid, h = min(maxEdge, sizing(centroid), interpolated vertexSizing).
+  //! 0: no bound.
+  double maxEdge = 0.0;
+  //! Sizing field h(x, y) > 0 (max edge length at that point); empty: none. Non-finite or
+  //! non-positive values mean "no bound here".
+  std::function<double(double, double)> sizing;
+  //! Per-input-vertex sizes (empty, or one per input point): interpolated linearly
+  //! (barycentric in the triangle, or along the segment) to every Steiner vertex.
+  std::vector<double> vertexSizing;
+  //! Insert off-centers (Üngör 2004/2009) instead of circumcenters for skinny triangles:
+  //! far fewer Steiner points for the same angle bound.
+  bool offcenters = true;
+  //! The off-center sits at distance offcenterFactor·|pq| / (2·tan(θ/2)) from the midpoint of
+  //! the shortest edge pq (1 = the exact off-center of Üngör; a little less keeps the new
+  //! triangle's angle strictly above θ despite rounding). Range (0, 0.99]: at 1 a new triangle
+  //! can land exactly on the bound and refinement may not terminate.
+  double offcenterFactor = 0.95;
+  //! Encroachment by diametral lenses (a point encroaches upon a subsegment when it sees it
+  //! under more than 180° − 2θ; Chew 1989, Shewchuk 2002) instead of diametral circles
+  //! (more than 90°). Default off: with off-centers and shortest-edge-first order, circles
+  //! gave ~9% fewer triangles on data/pslg/wiggly5000 (the lens splits fewer segments but
+  //! needs more interior vertices). Circles when θ = 0.
+  bool diametralLens = false;
+  //! Hard cap on Steiner vertices; hitting it stops with status IterationLimit (mesh kept).
+  size_t maxInsertions = 100000000;
+  //! Domain options of the CDT (convex hull, holes by orientation).
+  CdtOptions cdt;
+  //! Progress in [0, 1] (estimated) and cancel: returning false stops with Code::Cancelled.
+  ProgressFn progress;
+};
+
+//! Result of refinePslg. `mesh` follows PlanarMesh (input vertices first, constrained edges
+//! with their input segment, per-vertex segment and parameter).
+struct RefineResult {
+  PlanarMesh mesh;
+  //! Ok, or IterationLimit when maxInsertions stopped the refinement (the mesh is valid but
+  //! not every triangle meets the bounds).
+  Status status;
+  //! Smallest angle (degrees) over the triangles that are not exempt.
+  double minAngleDeg = 0.0;
+  //! Triangles below θ whose small angle is forced by the input: the angle is an input
+  //! angle between two segments (< θ), or the shortest edge joins two segment vertices on
+  //! segments sharing an apex at equal distance from it (concentric shells; Shewchuk 2002).
+  size_t exemptTriangles = 0;
+  size_t insertions = 0;      //!< Steiner vertices inserted (all kinds)
+  size_t segmentSplits = 0;   //!< of which on segments
+  size_t rejected = 0;        //!< insertion points given up (duplicate, cavity not star-shaped, tiny segment)
+  double seconds = 0.0;       //!< wall time of the whole call
+};
+
+//! Constrained Delaunay refinement of a PSLG (Ruppert 1995; Shewchuk 2002 "Delaunay refinement
+//! algorithms for triangular mesh generation"): encroached subsegments (diametral circle) are
+//! split first, at the midpoint, or at a power-of-two distance from an input vertex shared
+//! with another segment (concentric shells, so refinement terminates at small input angles);
+//! then bad triangles, shortest edge first, get their off-center / circumcenter, which is
+//! rejected in favour of splitting the subsegments it would encroach.
+//! Quality: min angle ≥ θ except exempt triangles; size: area ≤ maxArea and longest edge ≤ h.
+//! Failure: as triangulatePslg; InvalidArgument (θ outside [0, 34], negative sizes, wrong
+//! vertexSizing length); Cancelled. IterationLimit is returned in `status`, not thrown.
+RefineResult refinePslg(const Pslg& pslg, const RefineOptions& options = {});
+
+}  // namespace conformesh::planar
