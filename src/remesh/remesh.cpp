@@ -248,7 +248,32 @@ void Pipeline::flattenPatches() {
       fo.corners = boundaryCorners(w->pm);
       fo.boundary = fo.corners.empty() ? BoundaryCondition::Circle : BoundaryCondition::Corners;
       if (fo.corners.empty()) rep_.warnings.push_back("patch with a round (circle) boundary condition: no usable corners");
-      w->flat = flatten(w->pm.mesh, fo);
+      try {
+        w->flat = flatten(w->pm.mesh, fo);
+      } catch (const Error& e) {
+        // a layout that overlaps itself (or a flow that stalls): split the patch and retry
+        if (e.code() == Code::Cancelled || faces.size() < 16 || !F::splitPatch(g_, seg_, p)) throw;
+        ++scaleSplits_;
+        rep_.warnings.push_back(std::string("patch split after a flattening failure: ") + e.what());
+        split = true;
+        break;
+      }
+      if (std::getenv("CONFORMESH_DEBUG3")) {
+        const auto& loop = w->pm.boundaryLoops[0];
+        const auto& uv = w->flat.uv;
+        double worst = 0;
+        size_t n = loop.size();
+        std::vector<uint8_t> isC(w->pm.vertexInput.size(), 0);
+        for (auto& c : fo.corners) isC[c.first] = 1;
+        for (size_t k = 0; k < n; ++k) {
+          auto vh = [&](size_t kk) { const auto& h = loop[kk % n]; return w->pm.mesh.triangles[3 * h.face + h.corner]; };
+          uint32_t a = vh(k + n - 1), b = vh(k), c = vh(k + 1);
+          if (isC[b]) continue;
+          double ax = uv[2 * b] - uv[2 * a], ay = uv[2 * b + 1] - uv[2 * a + 1], bx = uv[2 * c] - uv[2 * b], by = uv[2 * c + 1] - uv[2 * b + 1];
+          worst = std::max(worst, std::abs(std::atan2(ax * by - ay * bx, ax * bx + ay * by)));
+        }
+        std::fprintf(stderr, "patch %u: %zu corners, max boundary turning at non-corners %.3g rad, iterations %d, err %.3g\n", p, fo.corners.size(), worst, w->flat.report.iterations, w->flat.report.maxCurvatureError);
+      }
       // planar/3D scale per sub vertex from the areas of the input faces around it
       const size_t nv = w->pm.vertexInput.size();
       std::vector<double> a2(nv, 0.0), a3(nv, 0.0);
@@ -451,13 +476,38 @@ void Pipeline::meshPatch(uint32_t p) {
   const size_t nv = pmsh.vertexCount();
   w.localToGlobal.assign(nv, kNone);
   w.interiorPositions.assign(nv, F::Vec3{});
+  std::vector<uint8_t> onBoundary(nv, 0);
+  {
+    std::unordered_map<uint64_t, int> cnt;
+    const auto& T = pmsh.triangles;
+    for (size_t t = 0; t < T.size(); t += 3)
+      for (int c = 0; c < 3; ++c) {
+        uint64_t a = T[t + c], b = T[t + (c + 1) % 3];
+        ++cnt[std::min(a, b) << 32 | std::max(a, b)];
+      }
+    for (const auto& [k, n] : cnt)
+      if (n == 1) onBoundary[k >> 32] = onBoundary[k & 0xffffffffu] = 1;
+  }
   for (size_t v = 0; v < nv; ++v) {
     if (v < bp.size()) {
       w.localToGlobal[v] = bp[v].sample;
       continue;
     }
-    if (pmsh.vertexSegment[v] >= 0) {
-      w.localToGlobal[v] = addSplitSample(w, bp, uint32_t(pmsh.vertexSegment[v]), pmsh.vertexParam[v]);
+    if (pmsh.vertexSegment[v] >= 0 || onBoundary[v]) {
+      // a Steiner vertex on a boundary segment: its segment and parameter by projection (robust
+      // whatever direction the refinement stores the segment in)
+      double best = INFINITY, bt = 0;
+      uint32_t bs = 0;
+      for (uint32_t sgm = 0; sgm < bp.size(); ++sgm) {
+        const auto& a = bp[sgm];
+        const auto& b = bp[(sgm + 1) % bp.size()];
+        double ex = b.x - a.x, ey = b.y - a.y, l2 = ex * ex + ey * ey;
+        if (l2 == 0) continue;
+        double t = std::clamp(((pmsh.points[2 * v] - a.x) * ex + (pmsh.points[2 * v + 1] - a.y) * ey) / l2, 0.0, 1.0);
+        double d = std::hypot(a.x + t * ex - pmsh.points[2 * v], a.y + t * ey - pmsh.points[2 * v + 1]);
+        if (d < best) best = d, bs = sgm, bt = t;
+      }
+      w.localToGlobal[v] = addSplitSample(w, bp, bs, bt);
       continue;
     }
     PullbackPoint q;
@@ -492,21 +542,14 @@ void Pipeline::patchUp(uint32_t p) {
     return out;
   };
   auto be = boundaryEdges();
-  double scale = 0;
-  for (size_t i = 0; i + 1 < P.size(); i += 2) scale = std::max({scale, std::abs(P[i]), std::abs(P[i + 1])});
-  const double eps = 1e-9 * (scale + 1e-300);
   std::vector<uint32_t> touched;
+  // samples the mesh already has on its boundary (a seam curve has them twice)
+  std::unordered_map<uint32_t, int> have, want;
+  for (const auto& e : be) ++have[w.localToGlobal[T[3 * e[0] + e[1]]]];
+  for (const auto& b : bp) ++want[b.sample];
   for (const auto& b : bp) {
-    // already a vertex?
-    bool found = false;
-    for (const auto& e : be) {
-      uint32_t v = T[3 * e[0] + e[1]];
-      if (w.localToGlobal[v] == b.sample && std::hypot(P[2 * v] - b.x, P[2 * v + 1] - b.y) < 1e6 * eps) {
-        found = true;
-        break;
-      }
-    }
-    if (found) continue;
+    if (have[b.sample] >= want[b.sample]) continue;
+    ++have[b.sample];
     // the boundary edge it lies on: smallest distance, strictly inside
     double best = INFINITY;
     size_t bi = kNone;
@@ -570,7 +613,10 @@ void Pipeline::patchUp(uint32_t p) {
       for (int k = 0; k < 3; ++k)
         if (T[3 * u + k] != a && T[3 * u + k] != b) d = T[3 * u + k];
       if (incircle(a, b, o, d) <= 0) continue;
-      if (orient(o, a, d) <= 0 || orient(d, b, o) <= 0) continue;  // quad not convex
+      // quad strictly convex (relative tolerance: never create a sliver from collinear points)
+      double l2 = std::pow(P[2 * o] - P[2 * d], 2) + std::pow(P[2 * o + 1] - P[2 * d + 1], 2);
+      double l2ab = std::pow(P[2 * a] - P[2 * b], 2) + std::pow(P[2 * a + 1] - P[2 * b + 1], 2);
+      if (orient(o, a, d) <= 1e-10 * std::max(l2, l2ab) || orient(d, b, o) <= 1e-10 * std::max(l2, l2ab)) continue;
       // flip ab -> od: triangles (o, a, d) and (d, b, o), both counter-clockwise
       T[3 * t] = o, T[3 * t + 1] = a, T[3 * t + 2] = d;
       T[3 * u] = d, T[3 * u + 1] = b, T[3 * u + 2] = o;
@@ -810,6 +856,8 @@ RemeshResult Pipeline::run(const MeshBuffers& input) {
     for (size_t i = 0; i + 1 < ids.size() && kept; ++i) {
       uint64_t a = ids[i], b = ids[i + 1];
       kept = edges.count(std::min(a, b) << 32 | std::max(a, b)) > 0;
+      if (!kept && std::getenv("CONFORMESH_DEBUG2"))
+        std::fprintf(stderr, "curve %zu (%zu samples): pair %zu (%u, %u) keys %g %g not an edge\n", c, ids.size(), i, ids[i], ids[i + 1], curveKey(uint32_t(c), ids[i]), curveKey(uint32_t(c), ids[i + 1]));
     }
     rep_.featureCurvesKept += kept;
   }
