@@ -529,7 +529,7 @@ void Pipeline::meshPatch(uint32_t p) {
       w.localToGlobal[v] = bp[v].sample;
       continue;
     }
-    if (pmsh.vertexSegment[v] >= 0 || onBoundary[v]) {
+    if (onBoundary[v]) {
       // a Steiner vertex on a boundary segment: its segment and parameter by projection (robust
       // whatever direction the refinement stores the segment in)
       double best = INFINITY, bt = 0;
