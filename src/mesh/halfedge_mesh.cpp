@@ -1,5 +1,6 @@
 #include "mesh/halfedge_mesh.h"
 
+#include <algorithm>
 #include <string>
 
 #include "mesh/edge_groups.h"
@@ -11,9 +12,7 @@ std::string faceText(const std::vector<uint32_t>& t, uint32_t f) {
   return "triangle " + std::to_string(f) + " (" + std::to_string(t[3 * f]) + " " +
          std::to_string(t[3 * f + 1]) + " " + std::to_string(t[3 * f + 2]) + ")";
 }
-}  // namespace
-
-HalfedgeMesh HalfedgeMesh::fromTriangles(size_t vertexCount, const std::vector<uint32_t>& t) {
+void checkTriangles(size_t vertexCount, const std::vector<uint32_t>& t) {
   if (t.size() % 3 != 0)
     fail(Code::InvalidArgument, Stage::Validate, "triangle index array length is not a multiple of 3");
   // Halfedge ids are uint32 with 0xffffffff reserved; at most 6 halfedges per triangle.
@@ -29,8 +28,20 @@ HalfedgeMesh HalfedgeMesh::fromTriangles(size_t vertexCount, const std::vector<u
     if (t[3 * f] == t[3 * f + 1] || t[3 * f + 1] == t[3 * f + 2] || t[3 * f] == t[3 * f + 2])
       fail(Code::DegenerateFace, Stage::Validate, faceText(t, f) + " repeats a vertex");
   }
+}
+}  // namespace
 
-  detail::EdgeGroups groups = detail::groupEdges(vertexCount, t);
+HalfedgeMesh HalfedgeMesh::fromTriangles(size_t vertexCount, const std::vector<uint32_t>& t) {
+  checkTriangles(vertexCount, t);
+  return fromGroupedTriangles(vertexCount, t, detail::groupEdges(vertexCount, t));
+}
+
+HalfedgeMesh HalfedgeMesh::fromGroupedTriangles(size_t vertexCount, const std::vector<uint32_t>& t,
+                                                detail::EdgeGroups&& groups) {
+  checkTriangles(vertexCount, t);
+  const uint32_t nf = uint32_t(t.size() / 3);
+  if (groups.corners.size() != t.size())
+    fail(Code::InternalError, Stage::Validate, "edge groups do not match the triangles");
   const size_t ne = groups.groupCount();
   HalfedgeMesh m;
   m.next_.assign(2 * ne, HalfedgeId());
@@ -40,13 +51,21 @@ HalfedgeMesh HalfedgeMesh::fromTriangles(size_t vertexCount, const std::vector<u
   m.vertexHalfedge_.assign(vertexCount, HalfedgeId());
   m.faceHalfedge_.assign(nf, HalfedgeId());
 
-  std::vector<uint32_t> cornerHalfedge(t.size());
+  std::vector<uint32_t> cornerHalfedge(t.size(), 0xffffffffu);
   for (size_t e = 0; e < ne; ++e) {
     const uint32_t* c = groups.corners.data() + groups.groupStart[e];
     const uint32_t n = groups.groupSize(e);
+    for (uint32_t k = 0; k < n; ++k)
+      if (c[k] >= t.size() || cornerHalfedge[c[k]] != 0xffffffffu)
+        fail(Code::InternalError, Stage::Validate, "edge groups list a corner twice");
+    for (uint32_t k = 1; k < n; ++k) {
+      uint32_t a0 = t[c[0]], b0 = detail::cornerTip(t, c[0]), a = t[c[k]], b = detail::cornerTip(t, c[k]);
+      if (!((a == a0 && b == b0) || (a == b0 && b == a0)))
+        fail(Code::InternalError, Stage::Validate, "edge groups do not match the triangles");
+    }
     if (n > 2) {
       uint32_t a = t[c[0]], b = detail::cornerTip(t, c[0]);
-      std::string msg = "edge (" + std::to_string(a) + ", " + std::to_string(b) + ") is shared by " +
+      std::string msg = "edge (" + std::to_string(std::min(a, b)) + ", " + std::to_string(std::max(a, b)) + ") is shared by " +
                         std::to_string(n) + " triangles:";
       for (uint32_t k = 0; k < n && k < 4; ++k) msg += " " + std::to_string(c[k] / 3);
       fail(Code::NonManifoldEdge, Stage::Validate, msg + (n > 4 ? " ..." : ""));
@@ -127,6 +146,12 @@ size_t HalfedgeMesh::degree(VertexId v) const {
   return d;
 }
 
+HalfedgeId HalfedgeMesh::findHalfedge(VertexId a, VertexId b) const {
+  for (HalfedgeId h : outgoingHalfedges(a))
+    if (tip(h) == b) return h;
+  return HalfedgeId();
+}
+
 std::vector<FaceId> HalfedgeMesh::vertexFaces(VertexId v) const {
   std::vector<FaceId> out;
   for (HalfedgeId h : outgoingHalfedges(v))
@@ -148,6 +173,7 @@ void HalfedgeMesh::checkInvariants() const {
   const size_t nh = halfedgeCount();
   if (nh % 2 != 0) bad("odd halfedge count");
   size_t boundary = 0;
+  std::vector<uint8_t> loopChecked(nh, 0);
   for (HalfedgeId h : halfedges()) {
     std::string hs = "halfedge " + std::to_string(h.idx());
     if (!next(h).valid() || next(h).idx() >= nh || !prev(h).valid() || prev(h).idx() >= nh) bad(hs + " has no next/prev");
@@ -160,14 +186,18 @@ void HalfedgeMesh::checkInvariants() const {
     if (isBoundary(h) && isBoundary(twin(h))) bad(hs + ": edge without faces");
     if (isBoundary(h)) {
       ++boundary;
-      // A boundary loop is a closed cycle of boundary halfedges (length capped by nh).
-      size_t n = 0;
-      HalfedgeId g = h;
-      do {
-        g = next(g);
-        ++n;
-      } while (g != h && n <= nh);
-      if (g != h) bad(hs + ": boundary loop does not close");
+      // A boundary loop is a closed cycle of boundary halfedges (length capped by nh); each
+      // loop is walked once.
+      if (!loopChecked[h.idx()]) {
+        size_t n = 0;
+        HalfedgeId g = h;
+        do {
+          loopChecked[g.idx()] = 1;
+          g = next(g);
+          ++n;
+        } while (g != h && n <= nh);
+        if (g != h) bad(hs + ": boundary loop does not close");
+      }
     } else {
       if (face(h).idx() >= faceCount()) bad(hs + ": face out of range");
       if (next(next(next(h))) != h) bad(hs + ": face is not a triangle");

@@ -61,6 +61,9 @@ using EdgeId = Handle<EdgeTag>;
 using FaceId = Handle<FaceTag>;
 
 class HalfedgeMesh;
+namespace detail {
+struct EdgeGroups;
+}
 
 //! Per-element data indexed by one handle kind (VertexData<double>, FaceData<int>, ...).
 //! A plain std::vector inside; data() exposes it for bulk work.
@@ -175,6 +178,10 @@ class HalfedgeMesh {
   //!   NonManifoldVertex (a vertex whose triangles form more than one fan), TooLarge (more than
   //!   2^31 halfedges). Messages name the offending vertices / triangles.
   static HalfedgeMesh fromTriangles(size_t vertexCount, const std::vector<uint32_t>& triangles);
+  //! As fromTriangles, with the corners already grouped by undirected edge (mesh/edge_groups.h;
+  //! used by validate(), which groups them for its own checks). Same checks and errors.
+  static HalfedgeMesh fromGroupedTriangles(size_t vertexCount, const std::vector<uint32_t>& triangles,
+                                           detail::EdgeGroups&& groups);
 
   // ---- counts and ranges -------------------------------------------------------------------
   size_t vertexCount() const { return vertexHalfedge_.size(); }
@@ -220,6 +227,8 @@ class HalfedgeMesh {
   }
   //! Number of edges at v (for a boundary vertex: faces + 1).
   size_t degree(VertexId v) const;
+  //! The halfedge from a to b, or invalid if they are not joined by an edge. O(degree(a)).
+  HalfedgeId findHalfedge(VertexId a, VertexId b) const;
 
   // ---- rotation around a vertex ----------------------------------------------------------------
   //! Next outgoing halfedge counter-clockwise around tail(h): twin(prev(h)).

@@ -130,7 +130,13 @@ void readStlAscii(const Source& src, const ReadOptions& opt, ReadResult& result)
 void readStlBinary(const Source& src, const ReadOptions& opt, ReadResult& result);
 void readPly(const Source& src, const ReadOptions& opt, ReadResult& result);
 
-//! Append a coordinate in the shortest of %.15g / %.16g / %.17g that parses back to `v`.
+//! Longest text formatDouble writes.
+constexpr size_t kMaxDoubleChars = 40;
+//! Write finite `v` as the shortest of 15, 16 or 17 significant digits that parses back to
+//! exactly `v` (fixed notation for 1e-5 <= |v| < 1e16, else scientific); returns the length.
+//! Throws Error(NonFiniteCoordinate, Write) for NaN / infinity.
+size_t formatDouble(double v, char* out);
+//! formatDouble appended to a string.
 void appendDouble(std::string& out, double v);
 
 }  // namespace conformesh::io_detail

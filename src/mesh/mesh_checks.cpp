@@ -122,8 +122,7 @@ Duplicates findDuplicateFaces(const std::vector<uint32_t>& tris) {
   return d;
 }
 
-EdgeStats edgeStats(size_t vertexCount, const std::vector<uint32_t>& tris) {
-  EdgeGroups g = groupEdges(vertexCount, tris);
+EdgeStats edgeStats(const EdgeGroups& g, const std::vector<uint32_t>& tris) {
   EdgeStats s;
   s.edges = g.groupCount();
   s.partner.assign(tris.size(), kNone);

@@ -9,6 +9,7 @@
 #include <vector>
 
 #include "core/mesh_buffers.h"
+#include "mesh/edge_groups.h"
 
 namespace conformesh::detail {
 
@@ -48,7 +49,7 @@ struct EdgeStats {
   std::vector<uint32_t> partner;  //!< per corner: the other corner of its edge if exactly 2, else kNone
   std::vector<uint32_t> boundaryCorners;  //!< corners on edges of exactly one triangle
 };
-EdgeStats edgeStats(size_t vertexCount, const std::vector<uint32_t>& tris);
+EdgeStats edgeStats(const EdgeGroups& groups, const std::vector<uint32_t>& tris);
 
 //! Consistent orientation by breadth-first search over two-triangle edges (components joined only
 //! through manifold edges). In each component the orientation of the majority of its triangles is

@@ -91,6 +91,11 @@ ReadResult readMesh(const uint8_t* data, size_t size, const ReadOptions& options
   static const uint8_t kNothing = 0;
   if (!data) data = &kNothing;  // size is then 0
 
+  // A UTF-8 byte order mark before a text format is skipped (some Windows tools write one).
+  if (size >= 3 && data[0] == 0xEF && data[1] == 0xBB && data[2] == 0xBF && !binaryStlSizeMatches(data, size)) {
+    data += 3;
+    size -= 3;
+  }
   Source src;
   src.data = data;
   src.size = size;

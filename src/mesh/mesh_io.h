@@ -16,6 +16,8 @@
 //   InvalidArgument      a bad option (negative or NaN weld tolerance, unknown forced format).
 // Degenerate faces (repeated indices, zero area) are kept: validation (mesh/validate) drops them.
 // Vertices are kept as in the file, including vertices no face uses (except after welding).
+// A UTF-8 byte order mark at the start of a text file is skipped. Hosts are assumed little endian
+// (x86, ARM, WASM): binary STL floats are read in place.
 #pragma once
 
 #include <cstddef>

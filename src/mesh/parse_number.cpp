@@ -1,4 +1,5 @@
 // conformesh — exact decimal number parsing and printing for the text mesh formats.
+#include <cmath>
 #include <cstdio>
 #include <cstdlib>
 
@@ -108,17 +109,124 @@ bool parseInt(const char* b, const char* e, int64_t& out) {
   return true;
 }
 
-void appendDouble(std::string& out, double v) {
-  char buf[40];
-  for (int prec = 15; prec <= 17; ++prec) {
-    int n = std::snprintf(buf, sizeof(buf), "%.*g", prec, v);
-    if (n <= 0 || n >= int(sizeof(buf))) break;
-    if (prec == 17 || std::strtod(buf, nullptr) == v) {
-      out.append(buf, size_t(n));
+namespace {
+
+// Round the 17 significant digits `in` (first digit at 10^x) to `prec` digits, half up.
+void roundDigits(const char* in, int prec, char* out, int& x) {
+  std::memcpy(out, in, size_t(prec));
+  if (in[prec] < '5') return;
+  for (int i = prec - 1; i >= 0; --i) {
+    if (out[i] != '9') {
+      ++out[i];
       return;
     }
+    out[i] = '0';
   }
-  fail(Code::InternalError, Stage::Write, "could not format a coordinate");
+  out[0] = '1';  // 9.99..9 rounded up to 10.0..0
+  ++x;
+}
+
+// Append sign, digits d[0..k) (trailing zeros dropped) with d[0] at 10^x: fixed notation for
+// -5 <= x <= 15, else scientific ("1.25e-07" style, as printf's %g would choose).
+template <class Out>
+void appendDigits(Out& out, bool neg, const char* d, int k, int x) {
+  while (k > 1 && d[k - 1] == '0') --k;
+  if (neg) out += '-';
+  if (x >= -5 && x <= 15) {
+    if (x < 0) {
+      out += "0.";
+      out.append(size_t(-x - 1), '0');
+      out.append(d, size_t(k));
+    } else if (x + 1 >= k) {
+      out.append(d, size_t(k));
+      out.append(size_t(x + 1 - k), '0');
+    } else {
+      out.append(d, size_t(x + 1));
+      out += '.';
+      out.append(d + x + 1, size_t(k - x - 1));
+    }
+    return;
+  }
+  out += d[0];
+  if (k > 1) {
+    out += '.';
+    out.append(d + 1, size_t(k - 1));
+  }
+  out += x < 0 ? "e-" : "e+";
+  const int ax = x < 0 ? -x : x;
+  if (ax >= 100) out += char('0' + ax / 100);
+  out += char('0' + (ax / 10) % 10);
+  out += char('0' + ax % 10);
+}
+
+// A fixed-capacity character sink (a formatted double never needs more than 32 characters).
+struct CharBuf {
+  char data[40];
+  size_t n = 0;
+  void append(const char* s, size_t k) {
+    std::memcpy(data + n, s, k);
+    n += k;
+  }
+  void append(size_t k, char c) {
+    std::memset(data + n, c, k);
+    n += k;
+  }
+  CharBuf& operator+=(char c) {
+    data[n++] = c;
+    return *this;
+  }
+  CharBuf& operator+=(const char* s) {
+    append(s, std::strlen(s));
+    return *this;
+  }
+  void clear() { n = 0; }
+};
+
+}  // namespace
+
+size_t formatDouble(double v, char* out) {
+  if (!std::isfinite(v)) fail(Code::NonFiniteCoordinate, Stage::Write, "cannot write a non-finite value");
+  if (v == 0.0) {
+    const char* z = std::signbit(v) ? "-0" : "0";
+    std::memcpy(out, z, std::strlen(z));
+    return std::strlen(z);
+  }
+  // 17 significant digits always read back to v; then try 15 and 16 (the shortest that reads back
+  // wins; the check parses the candidate, so a double rounding can only cost a digit, never
+  // exactness).
+  char buf[48];
+  const int n = std::snprintf(buf, sizeof(buf), "%.16e", v);  // [-]d.dddddddddddddddde[+-]XX
+  const bool neg = buf[0] == '-';
+  const char* p = buf + (neg ? 1 : 0);
+  if (n <= 0 || n >= int(sizeof(buf)) || p[1] != '.' || p[18] != 'e')
+    fail(Code::InternalError, Stage::Write, "could not format a coordinate");
+  char digits[18];
+  digits[0] = p[0];
+  std::memcpy(digits + 1, p + 2, 16);
+  digits[17] = '0';
+  const int exp10 = std::atoi(p + 19);
+  CharBuf c;
+  for (int prec = 15; prec <= 16; ++prec) {
+    char d[17];
+    int x = exp10;
+    roundDigits(digits, prec, d, x);
+    c.clear();
+    appendDigits(c, neg, d, prec, x);
+    double back;
+    if (parseDouble(c.data, c.data + c.n, back) && back == v) {
+      std::memcpy(out, c.data, c.n);
+      return c.n;
+    }
+  }
+  c.clear();
+  appendDigits(c, neg, digits, 17, exp10);
+  std::memcpy(out, c.data, c.n);
+  return c.n;
+}
+
+void appendDouble(std::string& out, double v) {
+  char buf[kMaxDoubleChars];
+  out.append(buf, formatDouble(v, buf));
 }
 
 }  // namespace conformesh::io_detail

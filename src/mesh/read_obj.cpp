@@ -31,12 +31,33 @@ void readObj(const Source& src, const ReadOptions& opt, ReadResult& result) {
   std::vector<double> uvList;          // vt u v, 2 per entry
   std::vector<int64_t> cornerUv;       // per triangle corner: vt index or -1
   bool anyCornerUv = false;
+  bool trackUvs = opt.readUvs;
   std::vector<int64_t> polyV, polyT;  // current face's corners
   int64_t maxV = -1, maxT = -1;        // largest positive index used, checked at the end
   size_t maxVLine = 0, maxTLine = 0;
 
   const char* p = reinterpret_cast<const char*>(src.data);
   const char* const end = p + src.size;
+  {
+    // Pre-count "v" and "f" lines to reserve (growth copies cost more than this pass), and see
+    // whether any "vt" exists (else corner uvs are not tracked).
+    size_t nv = 0, nf = 0, nvt = 0;
+    for (const char* q = p; q < end;) {
+      while (q < end && (*q == ' ' || *q == '\t')) ++q;
+      if (end - q > 1 && (q[1] == ' ' || q[1] == '\t')) {
+        nv += q[0] == 'v';
+        nf += q[0] == 'f';
+      } else if (end - q > 2 && q[0] == 'v' && q[1] == 't') {
+        ++nvt;
+      }
+      const void* nl = std::memchr(q, '\n', size_t(end - q));
+      q = nl ? static_cast<const char*>(nl) + 1 : end;
+    }
+    mesh.positions.reserve(3 * nv);
+    mesh.triangles.reserve(3 * nf);
+    if (nvt == 0) trackUvs = false;
+    else cornerUv.reserve(3 * nf);
+  }
   size_t line = 0;
   const char *b, *e;
   while (p < end) {
@@ -111,7 +132,7 @@ void readObj(const Source& src, const ReadOptions& opt, ReadResult& result) {
         const size_t c[3] = {0, i, i + 1};
         for (size_t k : c) {
           mesh.triangles.push_back(uint32_t(polyV[k]));
-          if (opt.readUvs) {
+          if (trackUvs) {
             cornerUv.push_back(polyT[k]);
             anyCornerUv |= polyT[k] >= 0;
           }
@@ -130,7 +151,7 @@ void readObj(const Source& src, const ReadOptions& opt, ReadResult& result) {
                  "texture index " + std::to_string(maxT + 1) + " > vt count " + std::to_string(uvList.size() / 2));
 
   // Per-vertex uvs when each used vertex has exactly one vt.
-  if (opt.readUvs && anyCornerUv) {
+  if (trackUvs && anyCornerUv) {
     std::vector<int64_t> vt(nv, -1);
     bool ok = true;
     for (size_t c = 0; c < cornerUv.size() && ok; ++c) {

@@ -86,8 +86,9 @@ void readOff(const Source& src, const ReadOptions&, ReadResult& result) {
   if (nv < 0 || nf < 0) src.failLine(Code::ParseError, sc.tokenLine(), "negative count");
   const int values = coords + (h.homogeneous ? 1 : 0);
   // Each vertex value and each face token takes at least 2 bytes ("0 "); face: "3 a b c ".
-  const uint64_t minBytes = uint64_t(nv) * 2 * uint64_t(values) + uint64_t(nf) * 8;
-  if (uint64_t(nv) > kMaxVertices || minBytes > uint64_t(sc.remaining()) + 1)
+  const uint64_t room = uint64_t(sc.remaining()) + 1;
+  if (uint64_t(nv) > kMaxVertices || uint64_t(nf) > room / 8 ||
+      uint64_t(nv) * 2 * uint64_t(values) + uint64_t(nf) * 8 > room)
     src.failLine(Code::TooLarge, sc.tokenLine(),
                  "header claims " + std::to_string(nv) + " vertices and " + std::to_string(nf) +
                      " faces, more than the " + std::to_string(sc.remaining()) + " remaining bytes can hold");

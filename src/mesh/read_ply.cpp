@@ -268,6 +268,7 @@ void readPly(const Source& src, const ReadOptions& opt, ReadResult& result) {
         src.failOffset(Code::ParseError, uint64_t(q - src.data), std::string("PLY data truncated in ") + what);
     };
     for (const Element& el : elements) {
+      if (el.props.empty()) continue;  // nothing to read, whatever its count
       const bool isVertex = &el == vertexEl, isFace = &el == faceEl;
       for (uint64_t i = 0; i < el.count; ++i) {
         for (const Property& pr : el.props) {
@@ -317,6 +318,7 @@ void readPly(const Source& src, const ReadOptions& opt, ReadResult& result) {
         src.failLine(Code::ParseError, sc.line(), std::string("end of file in PLY element '") + what + "'");
     };
     for (const Element& el : elements) {
+      if (el.props.empty()) continue;  // nothing to read, whatever its count
       const bool isVertex = &el == vertexEl, isFace = &el == faceEl;
       for (uint64_t i = 0; i < el.count; ++i) {
         for (const Property& pr : el.props) {

@@ -109,7 +109,7 @@ MeshInfo meshInfo(const MeshBuffers& m, const ValidateOptions& limits) {
                                  std::to_string(ff.faceToInput[dup.first]) + " repeats triangle " +
                                  std::to_string(ff.faceToInput[dup.firstOriginal])});
 
-  detail::EdgeStats es = detail::edgeStats(nv, tris);
+  detail::EdgeStats es = detail::edgeStats(detail::groupEdges(nv, tris), tris);
   info.edges = es.edges;
   info.nonManifoldEdges = es.nonManifoldEdges;
   if (es.nonManifoldEdges > 0) {

@@ -73,7 +73,8 @@ ValidatedMesh validate(const MeshBuffers& input, const ValidateOptions& options)
     fail(Code::EmptyMesh, S, "every one of the " + std::to_string(rep.inputTriangles) + " triangles is degenerate");
 
   // Non-manifold edges.
-  detail::EdgeStats es = detail::edgeStats(nvIn, tris);
+  detail::EdgeGroups groups = detail::groupEdges(nvIn, tris);
+  detail::EdgeStats es = detail::edgeStats(groups, tris);
   if (es.nonManifoldEdges > 0) {
     uint32_t c = es.firstNonManifoldCorner;
     uint32_t a = tris[c], b = detail::cornerTip(tris, c);
@@ -102,6 +103,9 @@ ValidatedMesh validate(const MeshBuffers& input, const ValidateOptions& options)
       std::swap(tris[3 * f + 1], tris[3 * f + 2]);
       std::swap(fans.cornerFan[3 * f + 1], fans.cornerFan[3 * f + 2]);
     }
+    // Reversing (v0 v1 v2) into (v0 v2 v1) moves the edge of corner i to corner 2 - i.
+    for (uint32_t& c : groups.corners)
+      if (o.flip[c / 3]) c = c - c % 3 + (2 - c % 3);
     rep.flippedFaces = o.flipped;
     rep.warnings.push_back({Code::InconsistentOrientation, o.flipped,
                             "reversed " + std::to_string(o.flipped) +
@@ -171,7 +175,8 @@ ValidatedMesh validate(const MeshBuffers& input, const ValidateOptions& options)
   }
   b.triangles = std::move(tris);
   out.faceToInput = std::move(faceToInput);
-  out.mesh = HalfedgeMesh::fromTriangles(nvOut, b.triangles);
+  // Splitting and renumbering vertices keeps each edge's corners together: the groups still hold.
+  out.mesh = HalfedgeMesh::fromGroupedTriangles(nvOut, b.triangles, std::move(groups));
   out.positions = vertexPositions(b);
   return out;
 }

@@ -1,6 +1,8 @@
 // conformesh — mesh writers: OBJ (optional vt), OFF, STL ascii and binary, PLY ascii and binary
 // (little or big endian, double coordinates, uint32 indices).
+#include <algorithm>
 #include <cmath>
+#include <cstdint>
 #include <string>
 #include <vector>
 
@@ -30,9 +32,64 @@ void checkBuffers(const MeshBuffers& mesh) {
     if (t >= nv) fail(Code::IndexOutOfRange, Stage::Write, "triangle index " + std::to_string(t) + " >= vertex count");
 }
 
-std::vector<uint8_t> toBytes(const std::string& s) { return std::vector<uint8_t>(s.begin(), s.end()); }
+// Text output straight into the byte vector writeMesh returns.
+class TextOut {
+ public:
+  explicit TextOut(size_t reserve) : bytes_(reserve) {}
+  void append(const char* s, size_t k) {
+    if (n_ + k > bytes_.size()) bytes_.resize(std::max(2 * bytes_.size(), n_ + k + 4096));
+    std::memcpy(bytes_.data() + n_, s, k);
+    n_ += k;
+  }
+  TextOut& operator+=(char c) {
+    append(&c, 1);
+    return *this;
+  }
+  TextOut& operator+=(const char* s) {
+    append(s, std::strlen(s));
+    return *this;
+  }
+  TextOut& operator+=(const std::string& s) {
+    append(s.data(), s.size());
+    return *this;
+  }
+  std::vector<uint8_t> take() {
+    bytes_.resize(n_);
+    return std::move(bytes_);
+  }
 
-void appendXYZ(std::string& out, const double* p) {
+ private:
+  std::vector<uint8_t> bytes_;
+  size_t n_ = 0;
+};
+
+void appendDouble(TextOut& out, double v) {
+  char buf[kMaxDoubleChars];
+  out.append(buf, formatDouble(v, buf));
+}
+
+void appendUInt(TextOut& out, uint64_t v) {
+  char buf[24];
+  char* e = buf + sizeof(buf);
+  char* b = e;
+  do {
+    *--b = char('0' + v % 10);
+    v /= 10;
+  } while (v);
+  out.append(b, size_t(e - b));
+}
+
+// "3 a b c\n" (OFF, ascii PLY face lines).
+void appendFace3(TextOut& out, const uint32_t* t) {
+  out += '3';
+  for (int k = 0; k < 3; ++k) {
+    out += ' ';
+    appendUInt(out, t[k]);
+  }
+  out += '\n';
+}
+
+void appendXYZ(TextOut& out, const double* p) {
   appendDouble(out, p[0]);
   out += ' ';
   appendDouble(out, p[1]);
@@ -40,8 +97,9 @@ void appendXYZ(std::string& out, const double* p) {
   appendDouble(out, p[2]);
 }
 
-std::string writeObj(const MeshBuffers& mesh, bool uvs) {
-  std::string s = "# conformesh\n";
+std::vector<uint8_t> writeObj(const MeshBuffers& mesh, bool uvs) {
+  TextOut s(mesh.vertexCount() * (uvs ? 100 : 60) + mesh.triangleCount() * (uvs ? 50 : 30) + 64);
+  s += "# conformesh\n";
   const size_t nv = mesh.vertexCount();
   for (size_t v = 0; v < nv; ++v) {
     s += "v ";
@@ -59,26 +117,28 @@ std::string writeObj(const MeshBuffers& mesh, bool uvs) {
   for (size_t t = 0; t < mesh.triangleCount(); ++t) {
     s += 'f';
     for (int k = 0; k < 3; ++k) {
-      const std::string i = std::to_string(mesh.triangles[3 * t + k] + uint64_t(1));
+      const uint64_t i = mesh.triangles[3 * t + k] + uint64_t(1);
       s += ' ';
-      s += i;
-      if (uvs) s += '/' + i;
+      appendUInt(s, i);
+      if (uvs) {
+        s += '/';
+        appendUInt(s, i);
+      }
     }
     s += '\n';
   }
-  return s;
+  return s.take();
 }
 
-std::string writeOff(const MeshBuffers& mesh) {
-  std::string s = "OFF\n" + std::to_string(mesh.vertexCount()) + ' ' + std::to_string(mesh.triangleCount()) + " 0\n";
+std::vector<uint8_t> writeOff(const MeshBuffers& mesh) {
+  TextOut s(mesh.vertexCount() * 60 + mesh.triangleCount() * 30 + 64);
+  s += "OFF\n" + std::to_string(mesh.vertexCount()) + ' ' + std::to_string(mesh.triangleCount()) + " 0\n";
   for (size_t v = 0; v < mesh.vertexCount(); ++v) {
     appendXYZ(s, &mesh.positions[3 * v]);
     s += '\n';
   }
-  for (size_t t = 0; t < mesh.triangleCount(); ++t)
-    s += "3 " + std::to_string(mesh.triangles[3 * t]) + ' ' + std::to_string(mesh.triangles[3 * t + 1]) + ' ' +
-         std::to_string(mesh.triangles[3 * t + 2]) + '\n';
-  return s;
+  for (size_t t = 0; t < mesh.triangleCount(); ++t) appendFace3(s, &mesh.triangles[3 * t]);
+  return s.take();
 }
 
 // Unit normal of triangle t (zero for a degenerate triangle).
@@ -95,8 +155,9 @@ void normalOf(const MeshBuffers& mesh, size_t t, double n[3]) {
   for (int k = 0; k < 3; ++k) n[k] = (len > 0 && std::isfinite(len)) ? n[k] / len : 0.0;
 }
 
-std::string writeStlAscii(const MeshBuffers& mesh) {
-  std::string s = "solid conformesh\n";
+std::vector<uint8_t> writeStlAscii(const MeshBuffers& mesh) {
+  TextOut s(mesh.triangleCount() * 300 + 64);
+  s += "solid conformesh\n";
   for (size_t t = 0; t < mesh.triangleCount(); ++t) {
     double n[3];
     normalOf(mesh, t, n);
@@ -111,7 +172,7 @@ std::string writeStlAscii(const MeshBuffers& mesh) {
     s += "  endloop\nendfacet\n";
   }
   s += "endsolid conformesh\n";
-  return s;
+  return s.take();
 }
 
 void putLE32(uint8_t* p, uint32_t v) {
@@ -131,6 +192,7 @@ void putFloatLE(uint8_t* p, double v) {
 std::vector<uint8_t> writeStlBinary(const MeshBuffers& mesh) {
   const size_t nt = mesh.triangleCount();
   if (uint64_t(nt) > 0xFFFFFFFFull) fail(Code::TooLarge, Stage::Write, "binary STL holds at most 2^32 - 1 triangles");
+  if (nt > (SIZE_MAX - 84) / 50) fail(Code::TooLarge, Stage::Write, "binary STL would not fit in memory");
   std::vector<uint8_t> out(84 + 50 * nt, 0);
   const char header[] = "binary STL written by conformesh";
   std::memcpy(out.data(), header, sizeof(header) - 1);  // not "solid": readers must not take it for ascii
@@ -164,25 +226,27 @@ std::vector<uint8_t> writePly(const MeshBuffers& mesh, MeshFormat format, bool u
   h += "property list uchar uint vertex_indices\nend_header\n";
   const size_t nv = mesh.vertexCount(), nt = mesh.triangleCount();
   if (format == MeshFormat::PlyAscii) {
+    TextOut s(h.size() + nv * (uvs ? 100 : 60) + nt * 30);
+    s += h;
     for (size_t v = 0; v < nv; ++v) {
-      appendXYZ(h, &mesh.positions[3 * v]);
+      appendXYZ(s, &mesh.positions[3 * v]);
       if (uvs) {
-        h += ' ';
-        appendDouble(h, mesh.uvs[2 * v]);
-        h += ' ';
-        appendDouble(h, mesh.uvs[2 * v + 1]);
+        s += ' ';
+        appendDouble(s, mesh.uvs[2 * v]);
+        s += ' ';
+        appendDouble(s, mesh.uvs[2 * v + 1]);
       }
-      h += '\n';
+      s += '\n';
     }
-    for (size_t t = 0; t < nt; ++t)
-      h += "3 " + std::to_string(mesh.triangles[3 * t]) + ' ' + std::to_string(mesh.triangles[3 * t + 1]) + ' ' +
-           std::to_string(mesh.triangles[3 * t + 2]) + '\n';
-    return toBytes(h);
+    for (size_t t = 0; t < nt; ++t) appendFace3(s, &mesh.triangles[3 * t]);
+    return s.take();
   }
   const bool be = format == MeshFormat::PlyBinaryBE;
   const size_t perVertex = uvs ? 5 : 3;
   std::vector<uint8_t> out(h.begin(), h.end());
   const size_t body = out.size();
+  if (nv > (SIZE_MAX / 2 - body) / (perVertex * 8) || nt > (SIZE_MAX / 2) / 13)
+    fail(Code::TooLarge, Stage::Write, "PLY would not fit in memory");
   out.resize(body + nv * perVertex * 8 + nt * 13);
   uint8_t* q = out.data() + body;
   auto put = [&](const void* src, size_t n) {
@@ -208,9 +272,9 @@ std::vector<uint8_t> writeMesh(const MeshBuffers& mesh, MeshFormat format, const
   checkBuffers(mesh);
   const bool uvs = options.writeUvs && !mesh.uvs.empty();
   switch (format) {
-    case MeshFormat::Obj: return toBytes(writeObj(mesh, uvs));
-    case MeshFormat::Off: return toBytes(writeOff(mesh));
-    case MeshFormat::StlAscii: return toBytes(writeStlAscii(mesh));
+    case MeshFormat::Obj: return writeObj(mesh, uvs);
+    case MeshFormat::Off: return writeOff(mesh);
+    case MeshFormat::StlAscii: return writeStlAscii(mesh);
     case MeshFormat::StlBinary: return writeStlBinary(mesh);
     case MeshFormat::PlyAscii:
     case MeshFormat::PlyBinaryLE:

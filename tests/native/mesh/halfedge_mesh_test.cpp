@@ -46,6 +46,7 @@ TEST_CASE("halfedge invariants hold on generated meshes, in any triangle and ver
         CHECK(hm.prev(hm.next(h)) == h);
         CHECK(hm.tail(hm.next(h)) == hm.tip(h));
         CHECK(hm.edge(hm.twin(h)) == hm.edge(h));
+        CHECK(hm.findHalfedge(hm.tail(h), hm.tip(h)) == h);
         if (hm.isBoundary(h)) {
           ++boundary;
           CHECK_FALSE(hm.isBoundary(hm.twin(h)));
@@ -85,6 +86,7 @@ TEST_CASE("halfedge invariants hold on generated meshes, in any triangle and ver
         CHECK(n == outgoing[v.idx()]);
         CHECK(n == hm.degree(v));
         CHECK(neighbors.size() == n);  // no repeated neighbour on a manifold
+        CHECK_FALSE(hm.findHalfedge(v, v).valid());
         CHECK(hm.vertexFaces(v).size() == trianglesAt[v.idx()]);
         CHECK(hm.degree(v) == trianglesAt[v.idx()] + (hm.isBoundary(v) ? 1 : 0));
       }

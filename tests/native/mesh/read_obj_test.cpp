@@ -91,6 +91,14 @@ TEST_CASE("OBJ: uvs kept when each vertex has one vt (any vt order), dropped at 
   CHECK(readMesh(bytesOf(s), noUv).mesh.uvs.empty());
 }
 
+TEST_CASE("a UTF-8 byte order mark before a text format is skipped") {
+  ReadResult r = readMesh(bytesOf("\xEF\xBB\xBFv 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n"));
+  CHECK(r.format == MeshFormat::Obj);
+  CHECK(r.mesh.triangleCount() == 1);
+  ReadResult r2 = readMesh(bytesOf("\xEF\xBB\xBFOFF\n3 1 0\n0 0 0\n1 0 0\n0 1 0\n3 0 1 2\n"));
+  CHECK(r2.format == MeshFormat::Off);
+}
+
 TEST_CASE("OBJ: degenerate faces are kept, polygons fan-triangulated") {
   ReadResult r = readMesh(bytesOf("v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 1 2\nf 1 2 3 1 2\n"));
   CHECK(r.mesh.triangles == std::vector<uint32_t>{0, 0, 1, 0, 1, 2, 0, 2, 0, 0, 0, 1});

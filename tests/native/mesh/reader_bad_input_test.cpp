@@ -94,6 +94,18 @@ TEST_CASE("bad input: PLY with a bad header -> ParseError; absurd counts -> TooL
   CHECK(codeOf(bytesOf("ply\nformat binary_little_endian 1.0\nelement vertex 3\nproperty float x\nproperty float y\n"
                        "property float z\nelement face 1\nproperty list uint uint vertex_indices\nend_header\n"
                        "000000000000000000000000000000000000\xff\xff\xff\xff")) == Code::ParseError);
+  // An element without properties costs nothing, whatever its count: no 4e9-iteration loop.
+  std::string triangle = "ply\nformat binary_little_endian 1.0\nelement junk 4000000000\nelement vertex 3\n"
+                         "property uchar x\nproperty uchar y\nproperty uchar z\nelement face 1\n"
+                         "property list uchar uchar vertex_indices\nend_header\n";
+  triangle += std::string("\0\0\0\1\0\0\0\1\0\3\0\1\2", 13);
+  CHECK(codeOf(bytesOf(triangle)) == Code::Ok);
+}
+
+TEST_CASE("bad input: OFF counts near 2^62 do not overflow the size check") {
+  CHECK(codeOf(bytesOf("OFF\n3 2305843009213693952 0\n0 0 0\n1 0 0\n0 1 0\n3 0 1 2\n")) == Code::TooLarge);
+  CHECK(codeOf(bytesOf("OFF\n4611686018427387904 1 0\n0 0 0\n")) == Code::TooLarge);
+  CHECK(codeOf(bytesOf("OFF\n3 9999999999999999999999 0\n")) == Code::ParseError);
 }
 
 TEST_CASE("bad input: OBJ index out of range, NaN coordinates") {

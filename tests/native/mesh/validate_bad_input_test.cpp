@@ -246,7 +246,7 @@ TEST_CASE("bad input: random triangle soups never crash") {
       try {
         ValidatedMesh vm = validate(m, o);
         CHECK_NOTHROW(vm.mesh.checkInvariants());
-        CHECK(vm.mesh.faceCount() == vm.buffers.triangleCount());
+        CHECK(vm.mesh.toTriangles() == vm.buffers.triangles);
         CHECK(vm.faceToInput.size() == vm.buffers.triangleCount());
         ++ok;
       } catch (const Error& e) {
@@ -263,4 +263,49 @@ TEST_CASE("bad input: random triangle soups never crash") {
   }
   CHECK(ok > 0);
   CHECK(failed > 0);
+}
+
+TEST_CASE("bad input: mutated surfaces (holes, bow-ties, flips, duplicates) repair or fail cleanly") {
+  uint64_t s = 987654321;
+  auto next = [&]() {
+    s = s * 6364136223846793005ull + 1442695040888963407ull;
+    return uint32_t(s >> 33);
+  };
+  const MeshBuffers bases[] = {makeIcosphere(2), makeTorus(12, 6, 2.0, 0.6), makeAnnulus(2, 10, 1.0, 2.0)};
+  int repaired = 0, splits = 0;
+  for (int iter = 0; iter < 60; ++iter) {
+    MeshBuffers m = bases[iter % 3];
+    const size_t nf = m.triangleCount();
+    std::vector<uint32_t> t;
+    for (size_t f = 0; f < nf; ++f) {
+      uint32_t r = next() % 100;
+      if (r < 15) continue;  // remove: holes, and bow-ties where holes touch at a vertex
+      uint32_t a = m.triangles[3 * f], b = m.triangles[3 * f + 1], c = m.triangles[3 * f + 2];
+      if (r < 25) std::swap(b, c);  // reverse
+      t.insert(t.end(), {a, b, c});
+      if (r == 99) t.insert(t.end(), {b, c, a});  // duplicate
+      if (r == 98) t.insert(t.end(), {a, a, c});  // degenerate
+    }
+    m.triangles = t;
+    ValidateOptions o;
+    o.splitNonManifoldVertices = true;
+    o.dropDuplicateFaces = true;
+    try {
+      ValidatedMesh vm = validate(m, o);
+      CHECK_NOTHROW(vm.mesh.checkInvariants());
+      CHECK(vm.mesh.toTriangles() == vm.buffers.triangles);
+      // The repaired surface is an oriented manifold: its counts obey the Euler–genus relation.
+      long c = long(connectedComponents(vm.mesh).count), b = long(boundaryLoops(vm.mesh).size());
+      CHECK((2 * c - eulerCharacteristic(vm.mesh) - b) % 2 == 0);
+      CHECK(genus(vm.mesh) >= 0);
+      ++repaired;
+      splits += vm.report.splitVertices > 0 ? 1 : 0;
+    } catch (const Error& e) {
+      // A non-orientable result is possible only in theory here; nothing else may fail.
+      CHECK(e.code() == Code::InvalidTopology);
+    }
+    CHECK_NOTHROW(meshInfo(m));
+  }
+  CHECK(repaired > 0);
+  CHECK(splits > 0);
 }

@@ -45,6 +45,7 @@ TEST_CASE("mixed orientation: the minority is reversed, per component") {
     REQUIRE(vm.buffers.triangleCount() == nf);
     for (size_t f = 0; f < nf; ++f) CHECK(sameOrientedTriangle(vm.buffers.triangles, nm.mesh.triangles, f));
     CHECK_NOTHROW(vm.mesh.checkInvariants());
+    CHECK(vm.mesh.toTriangles() == vm.buffers.triangles);
 
     ValidateOptions strict;
     strict.fixOrientation = false;
@@ -161,6 +162,7 @@ TEST_CASE("bow-tie vertices: split on request into manifold fans") {
   CHECK(connectedComponents(vm.mesh).count == 2);
   CHECK(boundaryLoops(vm.mesh).size() == 2);
   CHECK_NOTHROW(vm.mesh.checkInvariants());
+  CHECK(vm.mesh.toTriangles() == vm.buffers.triangles);
   CHECK(vm.vertexToInput[7] == 0);
   for (size_t v = 0; v < 8; ++v)
     for (int k = 0; k < 3; ++k) CHECK(vm.buffers.positions[3 * v + k] == m.positions[3 * vm.vertexToInput[v] + k]);
