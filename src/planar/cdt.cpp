@@ -43,8 +43,13 @@ class CdtBuilder {
       if (progress_ && (sIdx & 0xFFFF) == 0xFFFF && !progress_(Stage::Refine, 0.0))
         fail(Code::Cancelled, Stage::Refine, "cancelled");
     }
-    if (opt.convexHull) constrainHull();
+    if (opt.convexHull || s_.nInputSegments == 0) constrainHull();
     classify(in, opt);
+    bool any = false;
+    for (uint32_t t = 0; t < T_.tris.size() && !any; ++t) any = s_.inDomain(t);
+    if (!any)
+      pslgError("the domain is empty: no closed segment loop encloses a region (or hole seeds remove "
+                "everything); CdtOptions::convexHull meshes the convex hull");
   }
 
  private:

@@ -28,7 +28,8 @@ struct Pslg {
 struct CdtOptions {
   //! Constrain the convex hull edges (Triangle's -c): the domain is the whole convex hull minus
   //! holes. Default false: triangles outside the outermost segments are removed ("eaten" from
-  //! the hull inward up to segments, as Triangle does without -c).
+  //! the hull inward up to segments, as Triangle does without -c). A PSLG without segments
+  //! always gets its convex hull. An empty domain is an error (InvalidPslg).
   bool convexHull = false;
   //! Domain by orientation instead of seeds: the domain is where the winding number of the
   //! directed segments (a -> b) is non-zero, so counter-clockwise loops bound the domain and

@@ -197,7 +197,7 @@ double incircleExact(const double* a, const double* b, const double* c, const do
 }  // namespace
 
 PredicateStats& predicateStats() {
-  static PredicateStats s;
+  thread_local PredicateStats s;
   return s;
 }
 

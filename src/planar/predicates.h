@@ -23,7 +23,7 @@ double orient2d(const double* a, const double* b, const double* c);
 //! (a, b, c counter-clockwise), < 0 outside, 0 cocircular. Sign flips if abc is clockwise.
 double incircle(const double* a, const double* b, const double* c, const double* d);
 
-//! Number of calls that needed the exact stage (diagnostics for tests and benchmarks).
+//! Number of calls that needed the exact stage, per thread (diagnostics for tests and benchmarks).
 struct PredicateStats {
   unsigned long long orientExact = 0;
   unsigned long long incircleExact = 0;

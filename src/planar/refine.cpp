@@ -8,6 +8,7 @@
 #include <cstdlib>
 #include <cstring>
 #include <string>
+#include <unordered_set>
 
 #include "planar/cdt_state.h"
 
@@ -172,6 +173,9 @@ class Refiner {
   BadQueue bad_;
   std::vector<std::pair<uint32_t, uint32_t>> enc_;
   size_t insertions_ = 0, segmentSplits_ = 0, rejected_ = 0;
+  // Subsegments whose split was given up (too short, or no valid cavity): a triangle whose
+  // insertion point would need one of them split is given up too, so nothing loops.
+  std::unordered_set<uint64_t> unsplittable_;
   double progress_ = 0;
 
   std::vector<uint8_t> acute_;
@@ -357,6 +361,7 @@ class Refiner {
     double L2 = dist2(pu, pv);
     if (L2 < minSeg2_) {
       ++rejected_;
+      unsplittable_.insert(CdtState::key(u, v));
       return;
     }
     int32_t seg = s_.segmentOf(u, v);
@@ -380,11 +385,13 @@ class Refiner {
     double p[2] = {A[0] + tm * (B[0] - A[0]), A[1] + tm * (B[1] - A[1])};
     if ((p[0] == pu[0] && p[1] == pu[1]) || (p[0] == pv[0] && p[1] == pv[1])) {
       ++rejected_;
+      unsplittable_.insert(CdtState::key(u, v));
       return;
     }
     if (!T_.findCavity(p, hTri(h), h)) {
       T_.clearCavity();
       ++rejected_;
+      unsplittable_.insert(CdtState::key(u, v));
       return;
     }
     double hv = 0;
@@ -487,7 +494,12 @@ class Refiner {
     BadEntry again{t, Tt.v[0], Tt.v[1], Tt.v[2]};
     if (w == Walk::Blocked) {
       const Tri& B = T_.tris[hTri(edge)];
-      enc_.emplace_back(B.v[nxt(hEdge(edge))], B.v[prv(hEdge(edge))]);
+      uint32_t bu = B.v[nxt(hEdge(edge))], bv = B.v[prv(hEdge(edge))];
+      if (unsplittable_.count(CdtState::key(bu, bv))) {
+        ++rejected_;
+        return;
+      }
+      enc_.emplace_back(bu, bv);
       checkTriangle(again.t);
       return;
     }
@@ -496,7 +508,7 @@ class Refiner {
       ++rejected_;
       return;
     }
-    bool encroached = false;
+    bool encroached = false, stuck = false;
     for (const CavityEdge& ce : T_.boundary) {
       if (!(ce.flags & 1u)) continue;
       const double* pu = T_.pt(ce.u);
@@ -504,7 +516,14 @@ class Refiner {
       if (encroaches(p, pu, pv)) {
         enc_.emplace_back(ce.u, ce.v);
         encroached = true;
+        if (!unsplittable_.empty() && unsplittable_.count(CdtState::key(ce.u, ce.v))) stuck = true;
       }
+    }
+    if (stuck) {
+      enc_.clear();
+      T_.clearCavity();
+      ++rejected_;
+      return;
     }
     if (encroached) {
       T_.clearCavity();

@@ -76,6 +76,11 @@ struct RefineResult {
 //! then bad triangles, shortest edge first, get their off-center / circumcenter, which is
 //! rejected in favour of splitting the subsegments it would encroach.
 //! Quality: min angle ≥ θ except exempt triangles; size: area ≤ maxArea and longest edge ≤ h.
+//! Limits (measured): inputs whose angles are all ≥ 60° meet θ up to 34°; with smaller input
+//! angles θ ≤ 30° was met on every input tried (1000 random spiky polygons), while at 33° about
+//! 5% of them keep a few triangles below θ next to a small input angle (segment pieces that
+//! would get shorter than 1e-11 × the bounding-box diagonal are not split). Such triangles are
+//! not counted as exempt: minAngleDeg reports them. Refinement always stops (insertion cap).
 //! Failure: as triangulatePslg; InvalidArgument (θ outside [0, 34], negative sizes, wrong
 //! vertexSizing length); Cancelled. IterationLimit is returned in `status`, not thrown.
 RefineResult refinePslg(const Pslg& pslg, const RefineOptions& options = {});

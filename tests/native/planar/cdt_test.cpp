@@ -137,6 +137,16 @@ TEST_CASE("invalid PSLGs are reported with a code") {
   nan.segments = {0, 1};
   nan.points[3] = std::nan("");
   CHECK(codeOf([&] { triangulatePslg(nan); }) == Code::NonFiniteCoordinate);
+  Pslg open;  // an open polyline encloses nothing
+  open.points = {0, 0, 1, 0, 1, 1, 0, 1};
+  open.segments = {0, 1, 1, 2, 2, 3};
+  CHECK(codeOf([&] { triangulatePslg(open); }) == Code::InvalidPslg);
+  CdtOptions hull;
+  hull.convexHull = true;
+  CHECK(std::fabs(meshArea(triangulatePslg(open, hull)) - 1.0) < 1e-12);
+  Pslg pointsOnly;
+  pointsOnly.points = {0, 0, 1, 0, 1, 1, 0, 1, 0.5, 0.5};
+  CHECK(std::fabs(meshArea(triangulatePslg(pointsOnly)) - 1.0) < 1e-12);
   Pslg degenerate;
   degenerate.points = {0, 0, 1, 0, 0, 1, 0, 0};
   degenerate.segments = {0, 3};
