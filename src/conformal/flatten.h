@@ -31,6 +31,9 @@ struct FlattenOptions {
   //! Throw Code::NumericalFailure when the layout has inverted triangles or crossing boundary
   //! loops (default); false returns the result with the counts in the report.
   bool requireValidLayout = true;
+  //! Circle: among the Möbius-equivalent solutions, return the one whose 3D-area-weighted
+  //! vertex centroid is the disk centre (fixed-point iteration; lowers the area distortion).
+  bool balanceMobius = true;
 };
 
 struct FlattenReport {
@@ -75,5 +78,10 @@ struct FlatPatch {
 //! InconsistentOrientation, InvalidTopology, InvalidArgument, IterationLimit, NotConverged,
 //! NumericalFailure, Cancelled.
 FlatPatch flatten(const MeshBuffers& patch, const FlattenOptions& options = {}, ProgressFn progress = {});
+
+//! Corners for BoundaryCondition::Corners: the vertices of the outer boundary loop (the longest)
+//! whose 3D interior angle differs from pi by more than `threshold` radians, with that angle as
+//! their target. Throws conformesh::Error (stage Flatten) on invalid input, like flatten().
+std::vector<std::pair<uint32_t, double>> detectCorners(const MeshBuffers& patch, double threshold);
 
 }  // namespace conformesh

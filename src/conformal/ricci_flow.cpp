@@ -80,6 +80,9 @@ class Flow {
 
  private:
   void setupBoundary();
+  void setGauge(int pins);
+  bool circle_ = false;
+  int pins_ = 1;
   void updateTargets();
   // Flip, angles, curvature, targets and the gradient for the current u. Returns false when a
   // triangle violates the triangle inequality.
@@ -95,6 +98,15 @@ class Flow {
   int nFree_ = 0;
   int outer_ = 0;
   std::vector<char> loopNeumann_;  // per loop: targets from the circle / corner rule
+  // Derivative of the circle targets of one loop (see applyTargetJacobian).
+  struct LoopJacobian {
+    int loop = -1;
+    double sgn = 1, W = 0;
+    std::vector<double> w;  // per loop edge: q / sqrt(1 - q^2), q = c / 2R
+  };
+  std::vector<LoopJacobian> jac_;
+  Eigen::VectorXd applyTargetJacobian(const Eigen::VectorXd& x) const;
+  Eigen::VectorXd gmres(const Eigen::VectorXd& b, int maxIt, double tol) const;
   std::vector<double> cornerKbar_;  // per vertex: NaN unless a corner
   Eigen::SimplicialLDLT<Eigen::SparseMatrix<double>> solver_;
   bool analysed_ = false;
@@ -116,14 +128,10 @@ void Flow::setupBoundary() {
     }
   }
   loopNeumann_.assign(nL, 1);
-  free_.assign(T_.nV, 0);
-  if (opt_.boundary == BoundaryCondition::Free) {
-    loopNeumann_[outer_] = 0;
-    for (int v : T_.loops[outer_]) free_[v] = -1;
-  } else {
-    free_[T_.loops[outer_][0]] = -1;  // gauge: scale is free under pure Neumann conditions
-  }
+  if (opt_.boundary == BoundaryCondition::Free) loopNeumann_[outer_] = 0;
+  setGauge(1);
   cornerKbar_.assign(T_.nV, std::nan(""));
+  circle_ = opt_.boundary == BoundaryCondition::Circle || (opt_.boundary == BoundaryCondition::Corners && opt_.corners.empty());
   if (opt_.boundary == BoundaryCondition::Corners) {
     std::vector<int> loopOf(T_.nV, -1);
     for (int k = 0; k < nL; ++k)
@@ -139,13 +147,33 @@ void Flow::setupBoundary() {
       cornerKbar_[c.first] = kPi - c.second;
     }
   }
+}
+
+void Flow::setGauge(int pins) {
+  free_.assign(T_.nV, 0);
+  const auto& outerLoop = T_.loops[outer_];
+  if (opt_.boundary == BoundaryCondition::Free) {
+    for (int v : outerLoop) free_[v] = -1;
+  } else {
+    // Circle: the solutions form the 3-dimensional family of Möbius automorphisms of the disk
+    // composed with scaling, so for the exact Newton step u is pinned at three outer vertices
+    // (the equations there then hold automatically). Otherwise only the scale is pinned.
+    const size_t n = outerLoop.size();
+    if (pins == 3 && n >= 3)
+      for (size_t k = 0; k < 3; ++k) free_[outerLoop[k * n / 3]] = -1;
+    else
+      free_[outerLoop[0]] = -1;
+  }
+  pins_ = pins;
   nFree_ = 0;
   for (int v = 0; v < T_.nV; ++v)
     if (free_[v] == 0) free_[v] = nFree_++;
+  analysed_ = false;
 }
 
 void Flow::updateTargets() {
   Kbar_.assign(T_.nV, 0.0);
+  jac_.clear();
   std::vector<double> c;
   for (size_t k = 0; k < T_.loops.size(); ++k) {
     if (!loopNeumann_[k]) continue;
@@ -185,6 +213,16 @@ void Flow::updateTargets() {
     if (circumRadius(c, R)) {
       for (size_t i = 0; i < n; ++i)
         Kbar_[loop[i]] = sgn * (std::asin(std::min(1.0, c[(i + n - 1) % n] / (2 * R))) + std::asin(std::min(1.0, c[i] / (2 * R))));
+      LoopJacobian J;
+      J.loop = int(k);
+      J.sgn = sgn;
+      J.w.resize(n);
+      for (size_t i = 0; i < n; ++i) {
+        const double q = std::min(c[i] / (2 * R), 1.0 - 1e-16);
+        J.w[i] = q / std::sqrt((1 - q) * (1 + q));
+        J.W += J.w[i];
+      }
+      jac_.push_back(std::move(J));
     } else {  // no circumscribed circle: turning by arc length
       for (size_t i = 0; i < n; ++i) Kbar_[loop[i]] = sgn * kPi * (c[(i + n - 1) % n] + c[i]) / P;
     }
@@ -200,6 +238,76 @@ bool Flow::evaluate() {
   for (int v = 0; v < T_.nV; ++v)
     if (free_[v] >= 0) grad_[free_[v]] = K_[v] - Kbar_[v];
   return bad == 0;
+}
+
+// d Kbar / du applied to x (free unknowns). For the inscribed polygon, with q_e = c_e / 2R,
+// Kbar_i = s (asin q_{i-1} + asin q_i), dc_e / c_e = (du_a + du_b) / 2 and R fixed by
+// sum 2 asin q_e = 2 pi: dKbar_i = s sum_{e at i} w_e (dc_e/c_e - dR/R),
+// dR/R = sum_e w_e dc_e/c_e / sum_e w_e, w_e = q_e / sqrt(1 - q_e^2).
+Eigen::VectorXd Flow::applyTargetJacobian(const Eigen::VectorXd& x) const {
+  Eigen::VectorXd y = Eigen::VectorXd::Zero(nFree_);
+  std::vector<double> dc;
+  for (const LoopJacobian& J : jac_) {
+    const auto& loop = T_.loops[J.loop];
+    const size_t n = loop.size();
+    dc.assign(n, 0.0);
+    double dR = 0;
+    auto xv = [&](int v) { return free_[v] >= 0 ? x[free_[v]] : 0.0; };
+    for (size_t i = 0; i < n; ++i) {
+      dc[i] = 0.5 * (xv(loop[i]) + xv(loop[(i + 1) % n]));
+      dR += J.w[i] * dc[i];
+    }
+    dR /= J.W;
+    for (size_t i = 0; i < n; ++i) {
+      const int v = loop[i];
+      if (free_[v] < 0) continue;
+      const size_t im = (i + n - 1) % n;
+      y[free_[v]] += J.sgn * (J.w[im] * (dc[im] - dR) + J.w[i] * (dc[i] - dR));
+    }
+  }
+  return y;
+}
+
+// Solve (L - dKbar/du) x = L b for x, i.e. (I - L^{-1} B) x = b, by GMRES (Saad–Schultz 1986)
+// preconditioned with the factorization of L: the exact Newton step when the targets move.
+Eigen::VectorXd Flow::gmres(const Eigen::VectorXd& b, int maxIt, double tol) const {
+  const double beta = b.norm();
+  if (!(beta > 0)) return b;
+  std::vector<Eigen::VectorXd> V;
+  V.push_back(b / beta);
+  Eigen::MatrixXd H = Eigen::MatrixXd::Zero(maxIt + 1, maxIt);
+  std::vector<double> cs(maxIt), sn(maxIt);
+  Eigen::VectorXd g = Eigen::VectorXd::Zero(maxIt + 1);
+  g[0] = beta;
+  int m = 0;
+  for (int j = 0; j < maxIt; ++j) {
+    Eigen::VectorXd w = V[j] - solver_.solve(applyTargetJacobian(V[j]));
+    for (int i = 0; i <= j; ++i) {
+      H(i, j) = w.dot(V[i]);
+      w -= H(i, j) * V[i];
+    }
+    H(j + 1, j) = w.norm();
+    for (int i = 0; i < j; ++i) {
+      const double t = cs[i] * H(i, j) + sn[i] * H(i + 1, j);
+      H(i + 1, j) = -sn[i] * H(i, j) + cs[i] * H(i + 1, j);
+      H(i, j) = t;
+    }
+    const double r = std::hypot(H(j, j), H(j + 1, j));
+    cs[j] = H(j, j) / r;
+    sn[j] = H(j + 1, j) / r;
+    const double hj1 = H(j + 1, j);
+    H(j, j) = r;
+    H(j + 1, j) = 0;
+    g[j + 1] = -sn[j] * g[j];
+    g[j] = cs[j] * g[j];
+    m = j + 1;
+    if (std::fabs(g[j + 1]) <= tol * beta || !(hj1 > 1e-300)) break;
+    V.push_back(w / hj1);
+  }
+  Eigen::VectorXd y = H.topLeftCorner(m, m).triangularView<Eigen::Upper>().solve(g.head(m));
+  Eigen::VectorXd x = Eigen::VectorXd::Zero(b.size());
+  for (int i = 0; i < m; ++i) x += y[i] * V[i];
+  return x;
 }
 
 void Flow::assembleAndFactor() {
@@ -246,8 +354,16 @@ FlowResult Flow::run() {
   const double err0 = std::max(err, opt_.tolerance * 10);
   R.residuals.push_back(err);
   double reported = 0.0;
-  Eigen::VectorXd rhs(nFree_), delta(nFree_);
+  Eigen::VectorXd rhs, delta;
   std::vector<double> uOld;
+  bool exactMode = false;
+  int exactFailures = 0;
+  if (circle_) {
+    exactMode = true;
+    setGauge(3);
+    evaluate();
+    err = maxAbs(grad_);
+  }
   while (err > opt_.tolerance) {
     if (R.iterations >= opt_.maxIterations)
       fail(Code::IterationLimit, Stage::Flatten,
@@ -258,15 +374,27 @@ FlowResult Flow::run() {
       if (!progress_(Stage::Flatten, 0.8 * reported)) fail(Code::Cancelled, Stage::Flatten, "flatten: cancelled");
     }
     assembleAndFactor();
+    rhs.resize(nFree_);
     for (int i = 0; i < nFree_; ++i) rhs[i] = -grad_[i];
     delta = solver_.solve(rhs);
+    // Moving (circle) targets: the exact Newton step (GMRES on L - dKbar/du, preconditioned by
+    // L) converges quadratically but needs the Möbius gauge (3 pins); far from the solution its
+    // residual line search may stall, and then Newton with frozen targets (1 pin, a line search
+    // on the convex energy) takes over until the error is small.
+    bool movingTargets = exactMode;
+    if (movingTargets) delta = gmres(delta, 150, 1e-10);
+    double g0 = 0.0;
+    for (int i = 0; i < nFree_; ++i) g0 += grad_[i] * grad_[i];
     double d0 = 0.0;
     for (int i = 0; i < nFree_; ++i) d0 += grad_[i] * delta[i];
-    if (!std::isfinite(d0) || d0 >= 0.0)
-      fail(Code::NumericalFailure, Stage::Flatten, "flatten: the Newton direction is not a descent direction");
+    if (!movingTargets && (!std::isfinite(d0) || d0 >= 0.0))
+      fail(Code::NotConverged, Stage::Flatten,
+           "flatten: the Hessian lost positive definiteness at error " + std::to_string(err) +
+               " (boundary triangles degenerate: boundary edges cannot be flipped; the boundary targets may be infeasible)");
     uOld = u_;
     double t = 1.0;
     int halvings = 0;
+    bool restart = false;
     for (;;) {
       for (int v = 0; v < T_.nV; ++v)
         if (free_[v] >= 0) u_[v] = uOld[v] + t * delta[free_[v]];
@@ -275,9 +403,25 @@ FlowResult Flow::run() {
       // convex energy (the energy itself, with Lobachevsky's function, is not evaluated):
       // accept when phi'(t) <= 1/2 |phi'(0)| (curvature condition; energy decrease estimated by
       // the trapezoid rule, exact for the quadratic model).
-      double d1 = 0.0;
-      for (int i = 0; i < nFree_; ++i) d1 += grad_[i] * delta[i];
-      if (ok && std::isfinite(d1) && d1 <= -0.5 * d0) break;
+      // With moving (circle) targets the system is no gradient: sufficient decrease of the
+      // residual norm instead.
+      double d1 = 0.0, g1 = 0.0;
+      for (int i = 0; i < nFree_; ++i) {
+        d1 += grad_[i] * delta[i];
+        g1 += grad_[i] * grad_[i];
+      }
+      if (movingTargets ? (ok && std::isfinite(g1) && std::sqrt(g1) <= (1 - 1e-4 * t) * std::sqrt(g0))
+                        : (ok && std::isfinite(d1) && d1 <= -0.5 * d0))
+        break;
+      if (movingTargets && halvings >= 8) {
+        u_ = uOld;
+        exactMode = false;
+        ++exactFailures;
+        setGauge(1);
+        evaluate();
+        restart = true;
+        break;
+      }
       if (++halvings > opt_.maxHalvings) {
         u_ = uOld;
         fail(Code::NotConverged, Stage::Flatten,
@@ -286,13 +430,27 @@ FlowResult Flow::run() {
       }
       t *= 0.5;
     }
+    if (restart) {
+      err = maxAbs(grad_);
+      continue;
+    }
     ++R.iterations;
     R.steps.push_back(t);
     err = maxAbs(grad_);
+    if (circle_ && !exactMode && exactFailures < 3 && err < 1e-3) {
+      exactMode = true;
+      setGauge(3);
+      evaluate();
+      err = maxAbs(grad_);
+    }
     R.residuals.push_back(err);
   }
   if (progress_ && !progress_(Stage::Flatten, 0.8)) fail(Code::Cancelled, Stage::Flatten, "flatten: cancelled");
-  R.maxError = err;
+  // Report the error over every vertex with a target, pinned gauge vertices included.
+  R.maxError = 0.0;
+  for (int v = 0; v < T_.nV; ++v)
+    if (!(opt_.boundary == BoundaryCondition::Free && T_.boundaryVertex[v] && std::find(T_.loops[outer_].begin(), T_.loops[outer_].end(), v) != T_.loops[outer_].end()))
+      R.maxError = std::max(R.maxError, std::fabs(K_[v] - Kbar_[v]));
   double sumK = 0.0;
   for (double k : K_) sumK += k;
   const double chi = double(T_.nV) - T_.nE + T_.nF;

@@ -7,6 +7,9 @@
 #include "conformesh.h"
 #include "test_meshes.h"
 
+#include <fstream>
+#include <iterator>
+
 using namespace conformesh;
 
 namespace {
@@ -53,6 +56,15 @@ double bboxDiag(const MeshBuffers& M) {
 }
 
 }  // namespace
+
+MeshBuffers readData(const std::string& name) {
+  std::ifstream in(std::string(CONFORMESH_DATA_DIR) + "/" + name, std::ios::binary);
+  REQUIRE(in.good());
+  std::vector<uint8_t> bytes((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  ReadOptions ro;
+  ro.fileName = name;
+  return readMesh(bytes, ro).mesh;
+}
 
 // Random planar points inside the layout: pull back, check margin, distance to the input
 // triangle, and continuity (nearby planar points land near each other on the surface).
@@ -165,4 +177,97 @@ TEST_CASE("flatten: annulus maps to a circle domain without overlap") {
     CHECK((rmax - rmin) / rmax < 1e-6);
   }
   checkPullback(M, P, 2000, 3);
+}
+
+TEST_CASE("flatten data: holes.off (7 loops) -> circle domain; mech-holes-shark (4 loops) free outer loop") {
+  {
+    MeshBuffers M = readData("holes.off");
+    FlatPatch P = flatten(M);
+    CHECK(P.report.maxCurvatureError <= 1e-9);
+    CHECK(P.report.gaussBonnetError <= 1e-9);
+    CHECK(P.report.invertedTriangles == 0);
+    CHECK(P.report.boundaryCrossings == 0);
+    CHECK(P.boundaryLoops.size() == 7);
+    checkPullback(M, P, 10000, 11);
+  }
+  {
+    MeshBuffers M = readData("mech-holes-shark.off");
+    FlattenOptions o;
+    o.boundary = BoundaryCondition::Free;
+    FlatPatch P = flatten(M, o);
+    CHECK(P.report.maxCurvatureError <= 1e-9);
+    CHECK(P.report.invertedTriangles == 0);
+    CHECK(P.report.boundaryCrossings == 0);
+    checkPullback(M, P, 10000, 12);
+  }
+}
+
+TEST_CASE("flatten data: camelhead needles (min angle 0.55 deg) converge with flips, fail without") {
+  MeshBuffers M = readData("camelhead.off");
+  FlattenOptions o;
+  o.boundary = BoundaryCondition::Free;
+  FlatPatch P = flatten(M, o);
+  std::printf("camelhead with flips: %d iterations, %lld Ptolemy + %lld Euclidean flips, residuals:", P.report.iterations,
+              P.report.flips, P.report.euclideanFlips);
+  for (double r : P.report.residuals) std::printf(" %.2e", r);
+  std::printf("\n");
+  CHECK(P.report.maxCurvatureError <= 1e-9);
+  CHECK(P.report.flips + P.report.euclideanFlips > 0);
+  CHECK(P.report.invertedTriangles == 0);
+  checkPullback(M, P, 10000, 13);
+  o.flips = false;
+  try {
+    flatten(M, o);
+    FAIL("the flow without flips was expected to break the triangle inequality on camelhead");
+  } catch (const Error& e) {
+    std::printf("camelhead without flips: %s: %s\n", codeName(e.code()), e.what());
+    CHECK((e.code() == Code::NotConverged || e.code() == Code::IterationLimit));
+  }
+}
+
+TEST_CASE("flatten: corner-preserving boundary makes a square of a bent square patch") {
+  // A bent 8x8 grid: corners get 90 degrees, the rest of the boundary straight.
+  MeshBuffers M = testmesh::needleGrid(1.0, 8, 8, 0.4);
+  FlattenOptions o;
+  o.boundary = BoundaryCondition::Corners;
+  for (uint32_t v : {0u, 8u, 80u, 72u}) o.corners.emplace_back(v, M_PI / 2);
+  FlatPatch P = flatten(M, o);
+  CHECK(P.report.maxCurvatureError <= 1e-9);
+  CHECK(P.report.invertedTriangles == 0);
+  // Boundary vertices between two corners are collinear.
+  auto collinear = [&](uint32_t a, uint32_t b, uint32_t c) {
+    const double* A = &P.uv[2 * a]; const double* B = &P.uv[2 * b]; const double* C = &P.uv[2 * c];
+    const double cr = (B[0] - A[0]) * (C[1] - A[1]) - (B[1] - A[1]) * (C[0] - A[0]);
+    return std::fabs(cr) / (std::hypot(B[0] - A[0], B[1] - A[1]) * std::hypot(C[0] - A[0], C[1] - A[1]));
+  };
+  for (uint32_t i = 1; i < 8; ++i) CHECK(collinear(0, 8, i) < 1e-8);
+  for (uint32_t j = 1; j < 8; ++j) CHECK(collinear(0, 72, 9 * j) < 1e-8);
+  checkPullback(M, P, 2000, 14);
+}
+
+TEST_CASE("flatten: bad input gets a clear status") {
+  MeshBuffers M = testmesh::polarDisk(3, 8);
+  auto code = [](const MeshBuffers& m) {
+    try { flatten(m); } catch (const Error& e) { return e.code(); }
+    return Code::Ok;
+  };
+  MeshBuffers a = M;
+  a.triangles[4] = 999;
+  CHECK(code(a) == Code::IndexOutOfRange);
+  MeshBuffers b = M;
+  b.positions[5] = std::nan("");
+  CHECK(code(b) == Code::NonFiniteCoordinate);
+  MeshBuffers c = M;
+  std::swap(c.triangles[0], c.triangles[1]);
+  CHECK(code(c) == Code::InconsistentOrientation);
+  CHECK(code(MeshBuffers{}) == Code::EmptyMesh);
+  // A closed octahedron: no boundary.
+  MeshBuffers d;
+  d.positions = {1, 0, 0, -1, 0, 0, 0, 1, 0, 0, -1, 0, 0, 0, 1, 0, 0, -1};
+  d.triangles = {0, 2, 4, 2, 1, 4, 1, 3, 4, 3, 0, 4, 2, 0, 5, 1, 2, 5, 3, 1, 5, 0, 3, 5};
+  CHECK(code(d) == Code::InvalidTopology);
+  FlattenOptions o;
+  o.maxIterations = 1;
+  try { flatten(testmesh::sphericalCap(6, 20, 1.5), o); FAIL("expected IterationLimit"); }
+  catch (const Error& e) { CHECK(e.code() == Code::IterationLimit); }
 }

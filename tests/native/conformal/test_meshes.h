@@ -33,8 +33,8 @@ inline MeshBuffers polarDisk(int rings, int m, double twist = 0.0) {
 }
 
 //! The polar disk wrapped onto the unit sphere: ring k at polar angle k/rings * phiMax.
-inline MeshBuffers sphericalCap(int rings, int m, double phiMax) {
-  MeshBuffers M = polarDisk(rings, m);
+inline MeshBuffers sphericalCap(int rings, int m, double phiMax, double twist = 0.0) {
+  MeshBuffers M = polarDisk(rings, m, twist);
   for (size_t v = 0; v < M.vertexCount(); ++v) {
     double* p = &M.positions[3 * v];
     const double r = std::hypot(p[0], p[1]), a = std::atan2(p[1], p[0]), phi = r * phiMax;
@@ -111,4 +111,40 @@ inline MeshBuffers readTestMesh(const std::string& path) {
   return M;
 }
 
+}  // namespace conformesh::testmesh
+
+namespace conformesh::testmesh {
+//! A CAD-like planar strip [0, len] x [0, 1] meshed as a fan of needles: the bottom edge has n
+//! segments, the top edge one; every bottom vertex connects to the top-left corner, the last
+//! triangle uses the top-right corner. Apex angles ~ 1/(len n) rad.
+inline MeshBuffers needleStrip(double len, int n) {
+  MeshBuffers M;
+  for (int i = 0; i <= n; ++i) M.positions.insert(M.positions.end(), {len * i / n, 0.0, 0.0});
+  const uint32_t tl = uint32_t(n + 1), tr = uint32_t(n + 2);
+  M.positions.insert(M.positions.end(), {0.0, 1.0, 0.0});
+  M.positions.insert(M.positions.end(), {len, 1.0, 0.0});
+  for (int i = 0; i < n; ++i) M.triangles.insert(M.triangles.end(), {uint32_t(i), uint32_t(i + 1), tl});
+  M.triangles.insert(M.triangles.end(), {uint32_t(n), tr, tl});
+  return M;
+}
+}  // namespace conformesh::testmesh
+
+namespace conformesh::testmesh {
+//! A CAD-like strip [0, len] x [0, 1], nx by ny cells split by one diagonal, bent into a saddle
+//! z = bend (x'^2 - y'^2) (x', y' centred): with nx >> ny every triangle is a needle.
+inline MeshBuffers needleGrid(double len, int nx, int ny, double bend) {
+  MeshBuffers M;
+  for (int j = 0; j <= ny; ++j)
+    for (int i = 0; i <= nx; ++i) {
+      const double x = len * i / nx, y = double(j) / ny, xc = x - 0.5 * len, yc = y - 0.5;
+      M.positions.insert(M.positions.end(), {x, y, bend * (xc * xc - yc * yc)});
+    }
+  auto id = [&](int i, int j) { return uint32_t(j * (nx + 1) + i); };
+  for (int j = 0; j < ny; ++j)
+    for (int i = 0; i < nx; ++i) {
+      M.triangles.insert(M.triangles.end(), {id(i, j), id(i + 1, j), id(i + 1, j + 1)});
+      M.triangles.insert(M.triangles.end(), {id(i, j), id(i + 1, j + 1), id(i, j + 1)});
+    }
+  return M;
+}
 }  // namespace conformesh::testmesh
