@@ -11,6 +11,7 @@
 #include "core/status.h"
 #include "mesh/halfedge_mesh.h"
 #include "mesh/mesh_geometry.h"
+#include "conformal/flatten.h"
 #include "mesh/mesh_io.h"
 #include "mesh/primitives.h"
 #include "mesh/topology.h"

@@ -1,0 +1,99 @@
+// conformesh flatten IN -o OUT.obj [--boundary circle|free|corners] [--corner-angle DEG] [--json]
+//
+// Conformal flattening of a disk-like patch (or a disk with holes): writes the input mesh with
+// the planar coordinates as `vt` (OBJ). --json prints the report: iterations,
+// maxCurvatureError, flips, seconds, invertedTriangles, angleDistortionMax,
+// areaDistortionRange (and more). corners: boundary vertices of the outer loop whose 3D angle
+// differs from a straight angle by more than --corner-angle (default 30) keep their angle.
+#include <cmath>
+#include <cstdio>
+#include <string>
+#include <vector>
+
+#include "cli/cli_util.h"
+#include "cli/command.h"
+#include "conformal/flatten.h"
+#include "mesh/mesh_io.h"
+
+namespace conformesh::cli {
+namespace {
+
+int runFlatten(const std::vector<std::string>& argv) {
+  bool json = false;
+  for (const auto& a : argv) json = json || a == "--json";
+  try {
+    Args args = parseArgs(argv, {"-o", "--boundary", "--corner-angle", "--tolerance", "--max-iterations"},
+                          {"--json", "--no-flips"});
+    if (args.positional.size() != 1 || !args.has("-o"))
+      fail(Code::InvalidArgument, Stage::Api,
+           "usage: conformesh flatten IN -o OUT.obj [--boundary circle|free|corners] [--corner-angle DEG] [--json]");
+    const std::string in = args.positional[0], out = args.get("-o");
+    FlattenOptions o;
+    const std::string b = args.get("--boundary", "circle");
+    if (b == "circle")
+      o.boundary = BoundaryCondition::Circle;
+    else if (b == "free")
+      o.boundary = BoundaryCondition::Free;
+    else if (b == "corners")
+      o.boundary = BoundaryCondition::Corners;
+    else
+      fail(Code::InvalidArgument, Stage::Api, "--boundary must be circle, free or corners");
+    o.tolerance = args.number("--tolerance", o.tolerance);
+    o.maxIterations = int(args.number("--max-iterations", o.maxIterations));
+    o.flips = !args.has("--no-flips");
+    ReadOptions ro;
+    ro.fileName = in;
+    ReadResult rr = readMesh(readFileBytes(in), ro);
+    if (o.boundary == BoundaryCondition::Corners) {
+      const double deg = args.number("--corner-angle", 30.0);
+      if (!(deg > 0 && deg < 180)) fail(Code::InvalidArgument, Stage::Api, "--corner-angle must be in (0, 180) degrees");
+      o.corners = detectCorners(rr.mesh, deg * M_PI / 180.0);
+    }
+    FlatPatch P = flatten(rr.mesh, o);
+    MeshBuffers m = rr.mesh;
+    m.uvs = P.uv;
+    writeFileBytes(out, writeMesh(m, MeshFormat::Obj));
+    const FlattenReport& R = P.report;
+    if (json) {
+      std::string s = "{";
+      auto field = [&](const char* key, const std::string& value) {
+        if (s.size() > 1) s += ",";
+        s += jsonString(key) + ":" + value;
+      };
+      field("iterations", std::to_string(R.iterations));
+      field("maxCurvatureError", jsonNumber(R.maxCurvatureError));
+      field("flips", std::to_string(R.flips));
+      field("euclideanFlips", std::to_string(R.euclideanFlips));
+      field("seconds", jsonNumber(R.seconds));
+      field("invertedTriangles", std::to_string(R.invertedTriangles));
+      field("boundaryCrossings", std::to_string(R.boundaryCrossings));
+      field("angleDistortionMax", jsonNumber(R.angleDistortionMax));
+      field("angleDistortionMean", jsonNumber(R.angleDistortionMean));
+      field("areaDistortionRange", jsonNumber(R.areaDistortionRange));
+      field("gaussBonnetError", jsonNumber(R.gaussBonnetError));
+      field("boundaryLoops", std::to_string(R.boundaryLoops));
+      field("corners", std::to_string(o.corners.size()));
+      std::string res = "[";
+      for (size_t i = 0; i < R.residuals.size(); ++i) res += (i ? "," : "") + jsonNumber(R.residuals[i]);
+      field("residuals", res + "]");
+      std::printf("%s}\n", s.c_str());
+    } else {
+      std::printf("flattened %zu vertices, %zu triangles: %d Newton iterations, error %.3g, %lld flips, %.3f s -> %s\n",
+                  rr.mesh.vertexCount(), rr.mesh.triangleCount(), R.iterations, R.maxCurvatureError, R.flips, R.seconds,
+                  out.c_str());
+    }
+    return 0;
+  } catch (const Error& e) {
+    return reportError(e.status(), json);
+  } catch (const std::bad_alloc&) {
+    return reportError(Status{Code::TooLarge, Stage::Flatten, "out of memory"}, json);
+  }
+}
+
+const CommandRegistrar registrar({"flatten",
+                                  "flatten IN -o OUT.obj [--boundary circle|free|corners] [--corner-angle DEG] [--no-flips] [--json]",
+                                  "conformal flattening (Ricci flow with intrinsic Delaunay flips); writes uv as vt",
+                                  &runFlatten});
+
+}  // namespace
+}  // namespace conformesh::cli

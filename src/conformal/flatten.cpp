@@ -1,0 +1,322 @@
+#include "conformal/flatten.h"
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <complex>
+#include <string>
+
+#include "conformal/intrinsic_triangulation.h"
+#include "conformal/layout.h"
+#include "conformal/triangle_geometry.h"
+
+namespace conformesh {
+
+namespace {
+
+using Clock = std::chrono::steady_clock;
+double since(Clock::time_point t) { return std::chrono::duration<double>(Clock::now() - t).count(); }
+
+void distortion(const MeshBuffers& M, const std::vector<double>& uv, FlattenReport& R) {
+  double sum = 0, mx = 1;
+  size_t n = 0;
+  for (size_t f = 0; f < M.triangleCount(); ++f) {
+    const double* p[3];
+    const double* w[3];
+    for (int k = 0; k < 3; ++k) {
+      p[k] = &M.positions[3 * size_t(M.triangles[3 * f + k])];
+      w[k] = &uv[2 * size_t(M.triangles[3 * f + k])];
+    }
+    double e1[3], e2[3];
+    for (int k = 0; k < 3; ++k) {
+      e1[k] = p[1][k] - p[0][k];
+      e2[k] = p[2][k] - p[0][k];
+    }
+    const double l1 = std::sqrt(e1[0] * e1[0] + e1[1] * e1[1] + e1[2] * e1[2]);
+    const double x2 = (e1[0] * e2[0] + e1[1] * e2[1] + e1[2] * e2[2]) / l1;
+    const double c[3] = {e1[1] * e2[2] - e1[2] * e2[1], e1[2] * e2[0] - e1[0] * e2[2], e1[0] * e2[1] - e1[1] * e2[0]};
+    const double y2 = std::sqrt(c[0] * c[0] + c[1] * c[1] + c[2] * c[2]) / l1;
+    // J maps (l1, 0) -> w1 - w0 and (x2, y2) -> w2 - w0.
+    const double u1 = w[1][0] - w[0][0], v1 = w[1][1] - w[0][1], u2 = w[2][0] - w[0][0], v2 = w[2][1] - w[0][1];
+    const double a = u1 / l1, cc = v1 / l1;
+    const double b = (u2 - a * x2) / y2, d = (v2 - cc * x2) / y2;
+    const double E = 0.5 * (a + d), F = 0.5 * (a - d), G = 0.5 * (cc + b), H = 0.5 * (cc - b);
+    const double Q = std::hypot(E, H), Rr = std::hypot(F, G);
+    if (a * d - b * cc <= 0) ++R.inputTrianglesInvertedInUv;
+    const double s2 = std::fabs(Q - Rr);
+    const double ratio = s2 > 0 ? (Q + Rr) / s2 : 1e300;
+    if (!std::isfinite(ratio)) continue;
+    sum += ratio;
+    mx = std::max(mx, ratio);
+    ++n;
+  }
+  R.angleDistortionMean = n ? sum / n : 1.0;
+  R.angleDistortionMax = mx;
+}
+
+}  // namespace
+
+std::vector<std::pair<uint32_t, double>> detectCorners(const MeshBuffers& patch, double threshold) {
+  using namespace conformal;
+  IntrinsicTriangulation T = buildIntrinsicTriangulation(patch);
+  std::vector<double> angle, u(T.nV, 0.0);
+  computeAngles(T, u, angle);
+  std::vector<double> sum(T.nV, 0.0);
+  for (int h = 0; h < 3 * T.nF; ++h) sum[T.vert[IntrinsicTriangulation::prev(h)]] += angle[h];
+  size_t outer = 0;
+  double best = -1;
+  for (size_t k = 0; k < T.loops.size(); ++k) {
+    double len = 0;
+    for (int e : T.loopEdges[k]) len += std::exp(0.5 * T.lambda[e]);
+    if (len > best) {
+      best = len;
+      outer = k;
+    }
+  }
+  std::vector<std::pair<uint32_t, double>> corners;
+  for (int v : T.loops[outer])
+    if (std::fabs(sum[v] - kPi) > threshold) corners.emplace_back(uint32_t(v), sum[v]);
+  return corners;
+}
+
+namespace {
+FlatPatch flattenCompact(const MeshBuffers& patch, const FlattenOptions& options, const ProgressFn& progress);
+}
+
+FlatPatch flatten(const MeshBuffers& patch, const FlattenOptions& options, ProgressFn progress) {
+  // Vertices no face uses carry no metric: flatten without them and give them uv = (0, 0).
+  const size_t nV = patch.vertexCount();
+  std::vector<int> newId(nV, -1);
+  for (uint32_t v : patch.triangles)
+    if (v < nV) newId[v] = 0;
+  size_t used = 0;
+  for (size_t v = 0; v < nV; ++v)
+    if (newId[v] == 0) newId[v] = int(used++);
+  if (used == nV || patch.positions.size() != 3 * nV) return flattenCompact(patch, options, progress);
+  MeshBuffers compact;
+  std::vector<uint32_t> oldId(used);
+  compact.positions.resize(3 * used);
+  for (size_t v = 0; v < nV; ++v)
+    if (newId[v] >= 0) {
+      oldId[newId[v]] = uint32_t(v);
+      for (int k = 0; k < 3; ++k) compact.positions[3 * newId[v] + k] = patch.positions[3 * v + k];
+    }
+  compact.triangles.resize(patch.triangles.size());
+  for (size_t i = 0; i < patch.triangles.size(); ++i)
+    compact.triangles[i] = patch.triangles[i] < nV ? uint32_t(newId[patch.triangles[i]]) : patch.triangles[i];
+  FlattenOptions o = options;
+  for (auto& c : o.corners)
+    if (c.first < nV && newId[c.first] >= 0) c.first = uint32_t(newId[c.first]);
+  FlatPatch P = flattenCompact(compact, o, progress);
+  std::vector<double> uv(2 * nV, 0.0), u(nV, 0.0), pos(3 * nV, 0.0);
+  for (size_t w = 0; w < used; ++w) {
+    uv[2 * oldId[w]] = P.uv[2 * w];
+    uv[2 * oldId[w] + 1] = P.uv[2 * w + 1];
+    u[oldId[w]] = P.u[w];
+    for (int k = 0; k < 3; ++k) pos[3 * oldId[w] + k] = P.layout.positions[3 * w + k];
+  }
+  P.uv = std::move(uv);
+  P.u = std::move(u);
+  P.layout.positions = std::move(pos);
+  P.layout.uvs = P.uv;
+  for (auto& t : P.layout.triangles) t = oldId[t];
+  for (auto& loop : P.boundaryLoops)
+    for (auto& v : loop) v = oldId[v];
+  // The pull-back reports face indices (unchanged) and positions (same values): nothing to map.
+  return P;
+}
+
+namespace {
+// The circle solutions form a family: Möbius automorphisms of the disk map one solution to
+// another, exactly (|f(p) - f(q)|^2 = |f'(p)| |f'(q)| |p - q|^2, circles stay circles and disk
+// interiors stay inside, so the triangulation stays Delaunay and u changes by log |f'|). Pick
+// the member whose 3D-area-weighted vertex centroid is the disk's centre (least distortion in
+// practice), then restore the 3D area and lay out again.
+void balanceMobius(const conformal::IntrinsicTriangulation& T, const MeshBuffers& patch, int outerLoop,
+                   conformal::LayoutResult& L, std::vector<double>& u) {
+  using C = std::complex<double>;
+  const auto& loop = T.loops[outerLoop];
+  const size_t n = loop.size();
+  if (n < 3) return;
+  const C a(L.xy[2 * loop[0]], L.xy[2 * loop[0] + 1]), b(L.xy[2 * loop[n / 3]], L.xy[2 * loop[n / 3] + 1]),
+      c(L.xy[2 * loop[2 * n / 3]], L.xy[2 * loop[2 * n / 3] + 1]);
+  const C ba = b - a, ca = c - a;
+  const double d = 2 * (ba.real() * ca.imag() - ba.imag() * ca.real());
+  if (!(std::fabs(d) > 0)) return;
+  const C centre = a + C((ca.imag() * std::norm(ba) - ba.imag() * std::norm(ca)) / d,
+                         (ba.real() * std::norm(ca) - ca.real() * std::norm(ba)) / d);
+  const double R = std::abs(a - centre);
+  std::vector<double> w(T.nV, 0.0);
+  for (size_t f = 0; f < patch.triangleCount(); ++f) {
+    const double* p0 = &patch.positions[3 * size_t(patch.triangles[3 * f])];
+    const double* p1 = &patch.positions[3 * size_t(patch.triangles[3 * f + 1])];
+    const double* p2 = &patch.positions[3 * size_t(patch.triangles[3 * f + 2])];
+    const double e1[3] = {p1[0] - p0[0], p1[1] - p0[1], p1[2] - p0[2]}, e2[3] = {p2[0] - p0[0], p2[1] - p0[1], p2[2] - p0[2]};
+    const double A = 0.5 * std::hypot(e1[1] * e2[2] - e1[2] * e2[1], e1[2] * e2[0] - e1[0] * e2[2], e1[0] * e2[1] - e1[1] * e2[0]);
+    for (int k = 0; k < 3; ++k) w[patch.triangles[3 * f + k]] += A / 3;
+  }
+  std::vector<C> z(T.nV);
+  for (int v = 0; v < T.nV; ++v) z[v] = (C(L.xy[2 * v], L.xy[2 * v + 1]) - centre) / R;
+  std::vector<double> du(T.nV, 0.0);
+  for (int it = 0; it < 50; ++it) {
+    C m(0, 0);
+    double W = 0;
+    for (int v = 0; v < T.nV; ++v) {
+      m += w[v] * z[v];
+      W += w[v];
+    }
+    m /= W;
+    if (std::abs(m) < 1e-10) break;
+    if (std::abs(m) > 0.5) m *= 0.5 / std::abs(m);
+    const double s = 1 - std::norm(m);
+    for (int v = 0; v < T.nV; ++v) {
+      const C q = 1.0 - std::conj(m) * z[v];
+      du[v] += std::log(s) - 2 * std::log(std::abs(q));
+      z[v] = (z[v] - m) / q;
+    }
+  }
+  std::vector<double> u2 = u;
+  for (int v = 0; v < T.nV; ++v) u2[v] += du[v];
+  double a2 = 0, a3 = 0;
+  for (double x : w) a3 += x;
+  for (int f = 0; f < T.nF; ++f) {
+    double lam[3], ang[3];
+    for (int k = 0; k < 3; ++k) lam[k] = T.scaledLambda(3 * f + k, u2);
+    conformal::anglesFromLogLengths(lam, ang);
+    a2 += 0.5 * std::exp(0.5 * (lam[1] + lam[2])) * std::sin(ang[0]);
+  }
+  const double shift = 0.5 * std::log(a3 / a2);
+  if (!std::isfinite(shift)) return;
+  for (double& x : u2) x += shift;
+  conformal::LayoutResult L2 = conformal::layoutFlat(T, u2);
+  if (L2.invertedTriangles <= L.invertedTriangles && L2.boundaryCrossings <= L.boundaryCrossings) {
+    L = std::move(L2);
+    u = std::move(u2);
+  }
+}
+}  // namespace
+
+namespace {
+FlatPatch flattenCompact(const MeshBuffers& patch, const FlattenOptions& options, const ProgressFn& progress) {
+  using namespace conformal;
+  const auto t0 = Clock::now();
+  IntrinsicTriangulation T = buildIntrinsicTriangulation(patch);
+  // Start from the intrinsic Delaunay triangulation of the input metric (Euclidean flips keep
+  // the PL metric), as Gillespie–Springborn–Crane 2021: the conformal structure is then that of
+  // the surface, not of its tessellation (a flat patch maps to itself however it is meshed).
+  T.resetPositions(IntrinsicTriangulation::PositionKind::Angular);
+  IntrinsicTriangulation Tin, TdAngular, Td;
+  if (options.pullback) Tin = T;
+  const long long euclideanFlips =
+      options.flips ? conformal::flipToDelaunay(T, std::vector<double>(T.nV, 0.0), 200LL * T.nE + 10000, true) : 0;
+  if (options.pullback) TdAngular = T;
+  T.resetOrigins();
+  T.resetPositions(IntrinsicTriangulation::PositionKind::Horocyclic);
+  if (options.pullback) Td = T;
+
+  FlowOptions fo;
+  fo.boundary = options.boundary;
+  fo.flips = options.flips;
+  fo.tolerance = options.tolerance;
+  fo.maxIterations = options.maxIterations;
+  for (const auto& c : options.corners) {
+    if (c.first >= patch.vertexCount())
+      fail(Code::InvalidArgument, Stage::Flatten, "flatten: corner vertex " + std::to_string(c.first) + " out of range");
+    fo.corners.emplace_back(int(c.first), c.second);
+  }
+  if (options.boundary == BoundaryCondition::Corners && options.corners.empty()) fo.boundary = BoundaryCondition::Circle;
+  FlowResult flow = runRicciFlow(T, fo, progress);
+
+  FlatPatch out;
+  FlattenReport& R = out.report;
+  R.iterations = flow.iterations;
+  R.maxCurvatureError = flow.maxError;
+  R.residuals = flow.residuals;
+  R.flips = flow.flips;
+  R.euclideanFlips = euclideanFlips;
+  R.gaussBonnetError = flow.gaussBonnetError;
+  R.boundaryLoops = int(T.loops.size());
+  R.secondsFlow = since(t0);
+
+  // Normalize the scale: flat area = 3D area (Free keeps u = 0 on the boundary).
+  std::vector<double> u = flow.u;
+  if (options.boundary != BoundaryCondition::Free) {
+    double a3 = 0, a2 = 0;
+    for (size_t f = 0; f < patch.triangleCount(); ++f) {
+      const double* p0 = &patch.positions[3 * size_t(patch.triangles[3 * f])];
+      const double* p1 = &patch.positions[3 * size_t(patch.triangles[3 * f + 1])];
+      const double* p2 = &patch.positions[3 * size_t(patch.triangles[3 * f + 2])];
+      const double e1[3] = {p1[0] - p0[0], p1[1] - p0[1], p1[2] - p0[2]};
+      const double e2[3] = {p2[0] - p0[0], p2[1] - p0[1], p2[2] - p0[2]};
+      a3 += 0.5 * std::hypot(e1[1] * e2[2] - e1[2] * e2[1], e1[2] * e2[0] - e1[0] * e2[2], e1[0] * e2[1] - e1[1] * e2[0]);
+    }
+    for (int f = 0; f < T.nF; ++f) {
+      double lam[3], ang[3];
+      for (int k = 0; k < 3; ++k) lam[k] = T.scaledLambda(3 * f + k, u);
+      anglesFromLogLengths(lam, ang);
+      a2 += 0.5 * std::exp(0.5 * (lam[1] + lam[2])) * std::sin(ang[0]);  // angle 0 lies between edges 1, 2
+    }
+    const double c = 0.5 * std::log(a3 / a2);
+    if (std::isfinite(c))
+      for (double& x : u) x += c;
+  }
+  if (progress && !progress(Stage::Flatten, 0.85)) fail(Code::Cancelled, Stage::Flatten, "flatten: cancelled");
+
+  const auto t1 = Clock::now();
+  LayoutResult L = layoutFlat(T, u);
+  if (fo.boundary == BoundaryCondition::Circle && options.balanceMobius && L.invertedTriangles == 0)
+    balanceMobius(T, patch, flow.outerLoop, L, u);
+  R.secondsLayout = since(t1);
+  R.invertedTriangles = L.invertedTriangles;
+  R.boundaryCrossings = L.boundaryCrossings;
+  R.layoutLengthError = L.maxEdgeLengthError;
+  if (options.requireValidLayout && (L.invertedTriangles > 0 || L.boundaryCrossings > 0 || !(L.maxEdgeLengthError <= 1e-3)))
+    fail(Code::NumericalFailure, Stage::Flatten,
+         "flatten: the layout has " + std::to_string(L.invertedTriangles) + " inverted triangles, " +
+             std::to_string(L.boundaryCrossings) + " boundary crossings and a relative edge length error of " +
+             std::to_string(L.maxEdgeLengthError) + " (area distortion too large for double precision: " +
+             "try the free boundary or split the patch)");
+
+  out.uv = L.xy;
+  out.u = u;
+  out.layout.positions.resize(3 * size_t(T.nV));
+  for (int v = 0; v < T.nV; ++v) {
+    out.layout.positions[3 * v] = L.xy[2 * v];
+    out.layout.positions[3 * v + 1] = L.xy[2 * v + 1];
+    out.layout.positions[3 * v + 2] = 0.0;
+  }
+  out.layout.triangles.assign(T.vert.begin(), T.vert.end());
+  out.layout.uvs = L.xy;
+  {
+    std::vector<std::vector<uint32_t>> loops;
+    loops.emplace_back(T.loops[flow.outerLoop].begin(), T.loops[flow.outerLoop].end());
+    for (size_t k = 0; k < T.loops.size(); ++k)
+      if (int(k) != flow.outerLoop) loops.emplace_back(T.loops[k].begin(), T.loops[k].end());
+    out.boundaryLoops = std::move(loops);
+  }
+  double umin = 1e300, umax = -1e300;
+  for (double x : u) {
+    umin = std::min(umin, x);
+    umax = std::max(umax, x);
+  }
+  R.areaDistortionMin = std::exp(2 * umin);
+  R.areaDistortionMax = std::exp(2 * umax);
+  R.areaDistortionRange = std::exp(2 * (umax - umin));
+  distortion(patch, out.uv, R);
+  if (progress && !progress(Stage::Flatten, 0.9)) fail(Code::Cancelled, Stage::Flatten, "flatten: cancelled");
+
+  if (options.pullback) {
+    const auto t2 = Clock::now();
+    OverlayMap stage2 = buildOverlayMap(Tin, TdAngular, OverlayGeometry::Euclidean);
+    OverlayMap stage1 = buildOverlayMap(Td, T, OverlayGeometry::Hyperbolic);
+    out.pullback = Pullback(patch.positions, Tin.vert, L.xy, T.vert, u, std::move(stage1), std::move(stage2));
+    R.overlayCrossings = out.pullback.crossings();
+    R.secondsOverlay = since(t2);
+  }
+  R.seconds = since(t0);
+  if (progress && !progress(Stage::Flatten, 1.0)) fail(Code::Cancelled, Stage::Flatten, "flatten: cancelled");
+  return out;
+}
+}  // namespace
+
+}  // namespace conformesh
