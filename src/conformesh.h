@@ -9,9 +9,9 @@
 
 #include "core/mesh_buffers.h"
 #include "core/status.h"
+#include "conformal/flatten.h"
 #include "mesh/halfedge_mesh.h"
 #include "mesh/mesh_geometry.h"
-#include "conformal/flatten.h"
 #include "mesh/mesh_io.h"
 #include "mesh/primitives.h"
 #include "mesh/topology.h"
@@ -20,3 +20,4 @@
 #include "planar/cdt.h"
 #include "planar/poly_io.h"
 #include "planar/refine.h"
+#include "remesh/remesh.h"

@@ -1,0 +1,122 @@
+// conformesh remesh: remesh a surface mesh file and print the quality report.
+#include <cstdio>
+#include <string>
+
+#include "cli/cli_util.h"
+#include "cli/command.h"
+#include "mesh/mesh_io.h"
+#include "remesh/remesh.h"
+
+namespace conformesh::cli {
+namespace {
+
+std::string reportJson(const RemeshReport& r) {
+  std::string s = "{";
+  auto num = [&](const char* k, double v) { s += std::string("\"") + k + "\":" + jsonNumber(v) + ","; };
+  num("triangles", double(r.triangles));
+  num("vertices", double(r.vertices));
+  num("minAngle", r.minAngle);
+  num("maxAngle", r.maxAngle);
+  num("meanMinAngle", r.meanMinAngle);
+  num("pctBelow20", r.pctBelow20);
+  num("pctBelow26", r.pctBelow26);
+  num("pctBelow30", r.pctBelow30);
+  num("minAngleOutsideExempt", r.minAngleOutsideExempt);
+  num("trianglesBelowBoundOutsideExempt", double(r.trianglesBelowBoundOutsideExempt));
+  s += "\"exemptCorners\":[";
+  for (size_t i = 0; i < r.exemptCorners.size(); ++i) {
+    const auto& c = r.exemptCorners[i];
+    s += (i ? "," : "") + std::string("{\"vertex\":") + std::to_string(c.inputVertex) +
+         ",\"angle\":" + jsonNumber(c.angleDeg) + ",\"triangles\":[";
+    for (size_t k = 0; k < c.triangles.size(); ++k) s += (k ? "," : "") + std::to_string(c.triangles[k]);
+    s += "]}";
+  }
+  s += "],";
+  num("hausdorffRel", r.hausdorffRel);
+  num("maxDistanceToInputRel", r.maxDistanceToInputRel);
+  num("meanEdgeLength", r.meanEdgeLength);
+  num("targetEdgeLength", r.targetEdgeLength);
+  num("delaunayFraction", r.delaunayFraction);
+  num("featureCurves", double(r.featureCurves));
+  num("featureCurvesKept", double(r.featureCurvesKept));
+  num("patches", double(r.patches));
+  s += "\"flowIterations\":[";
+  for (size_t i = 0; i < r.flowIterations.size(); ++i) s += (i ? "," : "") + std::to_string(r.flowIterations[i]);
+  s += "],";
+  num("conformingRounds", r.conformingRounds);
+  num("certificateRounds", r.certificateRounds);
+  s += std::string("\"topologyPreserved\":") + (r.topologyPreserved ? "true" : "false") + ",";
+  const auto& t = r.seconds;
+  s += "\"seconds\":{\"validate\":" + jsonNumber(t.validate) + ",\"segment\":" + jsonNumber(t.segment) +
+       ",\"flatten\":" + jsonNumber(t.flatten) + ",\"curveMesh\":" + jsonNumber(t.curveMesh) +
+       ",\"refine\":" + jsonNumber(t.refine) + ",\"lift\":" + jsonNumber(t.lift) + ",\"stitch\":" +
+       jsonNumber(t.stitch) + ",\"report\":" + jsonNumber(t.report) + ",\"total\":" + jsonNumber(t.total) + "}}";
+  return s;
+}
+
+void printTable(const RemeshReport& r) {
+  std::printf("%-28s %zu -> %zu\n", "triangles (in -> out)", r.inputTriangles, r.triangles);
+  std::printf("%-28s %zu\n", "vertices", r.vertices);
+  std::printf("%-28s %.2f / %.2f / %.2f deg\n", "angle min / mean-min / max", r.minAngle, r.meanMinAngle, r.maxAngle);
+  std::printf("%-28s %.2f deg (%zu triangles below the bound)\n", "min angle outside exempt", r.minAngleOutsideExempt,
+              r.trianglesBelowBoundOutsideExempt);
+  std::printf("%-28s %.3f / %.3f / %.3f %%\n", "below 20 / 26 / 30 deg", r.pctBelow20, r.pctBelow26, r.pctBelow30);
+  std::printf("%-28s %zu\n", "exempt corners", r.exemptCorners.size());
+  std::printf("%-28s %.3g (max vertex distance %.2g)\n", "Hausdorff / bbox diagonal", r.hausdorffRel,
+              r.maxDistanceToInputRel);
+  std::printf("%-28s %.4g (target %.4g)\n", "mean edge length", r.meanEdgeLength, r.targetEdgeLength);
+  std::printf("%-28s %zu / %zu\n", "feature curves kept", r.featureCurvesKept, r.featureCurves);
+  std::printf("%-28s %zu (%zu curves, %zu samples)\n", "patches", r.patches, r.curves, r.curveSamples);
+  std::printf("%-28s %s\n", "topology preserved", r.topologyPreserved ? "yes" : "NO");
+  const auto& t = r.seconds;
+  std::printf("%-28s validate %.3f, segment %.3f, flatten %.3f, curves %.3f, refine %.3f, lift %.3f, stitch %.3f, "
+              "report %.3f, total %.3f\n",
+              "seconds", t.validate, t.segment, t.flatten, t.curveMesh, t.refine, t.lift, t.stitch, t.report, t.total);
+}
+
+int run(const std::vector<std::string>& argv) {
+  bool json = false;
+  for (const auto& a : argv) json = json || a == "--json";
+  try {
+    Args args = parseArgs(argv,
+                          {"-o", "--min-angle", "--edge-length", "--edge-length-rel", "--feature-angle", "--chord-tol"},
+                          {"--json", "--no-hausdorff"});
+    if (args.positional.size() != 1) fail(Code::InvalidArgument, Stage::Api, "remesh needs exactly one input file");
+    if (args.has("--edge-length") && args.has("--edge-length-rel"))
+      fail(Code::InvalidArgument, Stage::Api, "give --edge-length or --edge-length-rel, not both");
+    RemeshOptions opt;
+    opt.minAngleDeg = args.number("--min-angle", opt.minAngleDeg);
+    opt.targetEdgeLength = args.number("--edge-length", 0.0);
+    opt.targetEdgeLengthRel = args.number("--edge-length-rel", opt.targetEdgeLengthRel);
+    opt.featureAngleDeg = args.number("--feature-angle", opt.featureAngleDeg);
+    opt.chordTolerance = args.number("--chord-tol", opt.chordTolerance);
+    opt.computeHausdorff = !args.has("--no-hausdorff");
+    const std::string& inPath = args.positional[0];
+    ReadOptions ro;
+    ro.fileName = inPath;
+    ReadResult rr = readMesh(readFileBytes(inPath), ro);
+    RemeshResult r = remesh(rr.mesh, opt);
+    if (!r.status.ok()) return reportError(r.status, json);
+    std::string out = args.get("-o");
+    if (!out.empty()) {
+      auto dot = out.rfind('.');
+      MeshFormat f = formatFromName(dot == std::string::npos ? "" : out.substr(dot));
+      if (f == MeshFormat::Auto) fail(Code::InvalidArgument, Stage::Write, "-o: unknown extension (obj, off, stl, ply)");
+      writeFileBytes(out, writeMesh(r.mesh, f));
+    }
+    if (json) std::printf("%s\n", reportJson(r.report).c_str());
+    else printTable(r.report);
+    return 0;
+  } catch (const Error& e) {
+    return reportError(e.status(), json);
+  }
+}
+
+const CommandRegistrar registrar({"remesh",
+                                  "remesh IN -o OUT [--min-angle D] [--edge-length L | --edge-length-rel R] "
+                                  "[--feature-angle D] [--chord-tol T] [--json] [--no-hausdorff]",
+                                  "remesh a surface: conformal flattening per patch, planar Delaunay refinement, lift",
+                                  run});
+
+}  // namespace
+}  // namespace conformesh::cli

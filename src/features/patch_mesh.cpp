@@ -1,0 +1,117 @@
+#include "features/patch_mesh.h"
+
+#include <numeric>
+#include <unordered_map>
+
+namespace conformesh::features {
+namespace {
+struct UnionFind {
+  std::vector<uint32_t> p;
+  explicit UnionFind(size_t n) : p(n) { std::iota(p.begin(), p.end(), 0u); }
+  uint32_t find(uint32_t x) {
+    while (p[x] != x) x = p[x] = p[p[x]];
+    return x;
+  }
+  void unite(uint32_t a, uint32_t b) { p[find(a)] = find(b); }
+};
+}  // namespace
+
+PatchMesh extractPatch(const EdgeGraph& g, const std::vector<uint8_t>& isCurve,
+                       const std::vector<uint32_t>& faces, bool traceLoops) {
+  PatchMesh pm;
+  const uint32_t nF = uint32_t(faces.size());
+  std::unordered_map<uint32_t, uint32_t> local;
+  local.reserve(faces.size() * 2);
+  for (uint32_t i = 0; i < nF; ++i) local.emplace(faces[i], i);
+  auto localOf = [&](uint32_t f) {
+    auto it = local.find(f);
+    return it == local.end() ? kNone : it->second;
+  };
+  // corners (i, c) -> 3i + c; unite corners of the same input vertex across non-curve edges
+  UnionFind uf(3 * size_t(nF));
+  uint32_t boundaryHalfedges = 0;
+  std::vector<uint8_t> heBoundary(3 * size_t(nF), 0);
+  for (uint32_t i = 0; i < nF; ++i) {
+    uint32_t f = faces[i];
+    for (int c = 0; c < 3; ++c) {
+      uint32_t e = g.faceEdges[f][c];
+      uint32_t other = g.edgeFaces[e][0] == f ? g.edgeFaces[e][1] : g.edgeFaces[e][0];
+      uint32_t j = other == kNone ? kNone : localOf(other);
+      if (isCurve[e] || j == kNone) {
+        heBoundary[3 * i + c] = 1;
+        ++boundaryHalfedges;
+        continue;
+      }
+      if (j < i) continue;
+      uint32_t a = g.faces[f][c], b = g.faces[f][(c + 1) % 3];
+      for (int d = 0; d < 3; ++d) {
+        if (g.faces[other][d] == a) uf.unite(3 * i + c, 3 * j + d);
+        if (g.faces[other][d] == b) uf.unite(3 * i + (c + 1) % 3, 3 * j + d);
+      }
+    }
+  }
+  std::vector<uint32_t> rootVertex(3 * size_t(nF), kNone);
+  pm.mesh.triangles.resize(3 * size_t(nF));
+  pm.faceInput = faces;
+  for (uint32_t i = 0; i < nF; ++i) {
+    for (int c = 0; c < 3; ++c) {
+      uint32_t r = uf.find(3 * i + c);
+      if (rootVertex[r] == kNone) {
+        rootVertex[r] = uint32_t(pm.vertexInput.size());
+        uint32_t v = g.faces[faces[i]][c];
+        pm.vertexInput.push_back(v);
+        const Vec3& p = g.positions[v];
+        pm.mesh.positions.insert(pm.mesh.positions.end(), {p.x, p.y, p.z});
+      }
+      pm.mesh.triangles[3 * i + c] = rootVertex[r];
+    }
+  }
+  const long V = long(pm.vertexInput.size()), F = long(nF);
+  const long E = (3 * F + long(boundaryHalfedges)) / 2;
+  pm.eulerCharacteristic = int(V - E + F);
+  if (!traceLoops) {
+    // loops counted only: each boundary vertex has exactly one outgoing boundary halfedge
+    std::vector<uint32_t> next(V, kNone);
+    for (uint32_t h = 0; h < 3 * nF; ++h)
+      if (heBoundary[h]) next[pm.mesh.triangles[h]] = pm.mesh.triangles[3 * (h / 3) + (h % 3 + 1) % 3];
+    std::vector<uint8_t> seen(V, 0);
+    for (long v = 0; v < V; ++v) {
+      if (next[v] == kNone || seen[v]) continue;
+      pm.boundaryLoops.emplace_back();
+      uint32_t w = uint32_t(v);
+      for (long guard = 0; !seen[w] && guard <= V; ++guard) {
+        seen[w] = 1;
+        w = next[w];
+        if (w == kNone) break;
+      }
+    }
+    return pm;
+  }
+  std::vector<uint32_t> outHe(V, kNone);
+  for (uint32_t h = 0; h < 3 * nF; ++h)
+    if (heBoundary[h]) {
+      uint32_t v = pm.mesh.triangles[h];
+      if (outHe[v] != kNone)
+        fail(Code::InternalError, Stage::Segment, "patch boundary vertex with two outgoing boundary edges");
+      outHe[v] = h;
+    }
+  std::vector<uint8_t> seen(3 * size_t(nF), 0);
+  for (uint32_t h0 = 0; h0 < 3 * nF; ++h0) {
+    if (!heBoundary[h0] || seen[h0]) continue;
+    std::vector<PatchMesh::BoundaryHalfedge> loop;
+    uint32_t h = h0;
+    for (uint32_t guard = 0; !seen[h]; ++guard) {
+      if (guard > 3 * nF) fail(Code::InternalError, Stage::Segment, "patch boundary loop does not close");
+      seen[h] = 1;
+      loop.push_back({h / 3, uint8_t(h % 3)});
+      uint32_t to = pm.mesh.triangles[3 * (h / 3) + (h % 3 + 1) % 3];
+      h = outHe[to];
+      if (h == kNone) fail(Code::InternalError, Stage::Segment, "patch boundary loop is open");
+    }
+    if (h != h0) fail(Code::InternalError, Stage::Segment, "patch boundary loops merge");
+    pm.boundaryLoops.push_back(std::move(loop));
+  }
+  return pm;
+}
+
+}  // namespace conformesh::features

@@ -1,0 +1,382 @@
+#include "features/segmentation.h"
+
+#include <algorithm>
+#include <cmath>
+#include <queue>
+#include <string>
+
+namespace conformesh::features {
+namespace {
+
+constexpr double kPi = 3.14159265358979323846;
+
+// Geodesic Voronoi partition of the face set `region` (Dijkstra on the dual graph, centroid
+// distances, never crossing a curve edge) with k farthest-point seeds. `local` maps input face ->
+// index in region (kNone outside). Returns a label in [0, k) per region face.
+std::vector<uint32_t> voronoiPartition(const EdgeGraph& g, const std::vector<uint8_t>& mask,
+                                       const std::vector<uint32_t>& region,
+                                       const std::vector<uint32_t>& local, uint32_t k) {
+  const uint32_t n = uint32_t(region.size());
+  std::vector<double> dist(n, INFINITY);
+  std::vector<uint32_t> label(n, kNone);
+  std::vector<Vec3> centroid(n);
+  for (uint32_t i = 0; i < n; ++i) centroid[i] = g.faceCentroid(region[i]);
+  using Item = std::pair<double, uint32_t>;
+  auto run = [&](uint32_t seed, uint32_t lab) {
+    std::priority_queue<Item, std::vector<Item>, std::greater<Item>> pq;
+    dist[seed] = 0;
+    label[seed] = lab;
+    pq.push({0.0, seed});
+    while (!pq.empty()) {
+      auto [d, i] = pq.top();
+      pq.pop();
+      if (d > dist[i]) continue;
+      uint32_t f = region[i];
+      for (int c = 0; c < 3; ++c) {
+        uint32_t e = g.faceEdges[f][c];
+        if (mask[e]) continue;
+        uint32_t o = g.edgeFaces[e][0] == f ? g.edgeFaces[e][1] : g.edgeFaces[e][0];
+        if (o == kNone) continue;
+        uint32_t j = local[o];
+        if (j == kNone) continue;
+        double nd = d + norm(centroid[j] - centroid[i]);
+        if (nd < dist[j]) {
+          dist[j] = nd;
+          label[j] = lab;
+          pq.push({nd, j});
+        }
+      }
+    }
+  };
+  // first seed: farthest from region[0]
+  run(0, 0);
+  uint32_t seed = uint32_t(std::max_element(dist.begin(), dist.end(),
+                                            [](double a, double b) {
+                                              return (std::isinf(a) ? -1.0 : a) < (std::isinf(b) ? -1.0 : b);
+                                            }) - dist.begin());
+  std::fill(dist.begin(), dist.end(), INFINITY);
+  std::fill(label.begin(), label.end(), kNone);
+  for (uint32_t s = 0; s < k; ++s) {
+    run(seed, s);  // incremental multi-source Dijkstra: only faces closer to the new seed change
+    double best = -1;
+    uint32_t next = kNone;
+    for (uint32_t i = 0; i < n; ++i)
+      if (dist[i] > best) best = dist[i], next = i;
+    if (next == kNone || best <= 0) break;
+    seed = next;
+  }
+  return label;
+}
+
+struct Cutter {
+  const EdgeGraph& g;
+  Segmentation& seg;
+  std::vector<uint8_t> mask;
+  std::vector<uint32_t> local;
+  uint32_t maxPatches;
+
+  Cutter(const EdgeGraph& g_, Segmentation& s, uint32_t maxP)
+      : g(g_), seg(s), mask(s.curveMask()), local(g_.faceCount, kNone), maxPatches(maxP) {}
+
+  // Mark (value 1) or unmark (0) the borders between different labels of a partition.
+  std::vector<uint32_t> borders(const std::vector<uint32_t>& region, const std::vector<uint32_t>& label) {
+    std::vector<uint32_t> out;
+    for (uint32_t i = 0; i < region.size(); ++i) {
+      uint32_t f = region[i];
+      for (int c = 0; c < 3; ++c) {
+        uint32_t e = g.faceEdges[f][c];
+        if (mask[e]) continue;
+        uint32_t o = g.edgeFaces[e][0] == f ? g.edgeFaces[e][1] : g.edgeFaces[e][0];
+        if (o == kNone || local[o] == kNone || o < f) continue;
+        if (label[local[o]] != label[i]) out.push_back(e);
+      }
+    }
+    return out;
+  }
+
+  std::vector<std::vector<uint32_t>> groups(const std::vector<uint32_t>& region,
+                                            const std::vector<uint32_t>& label, uint32_t k) {
+    std::vector<std::vector<uint32_t>> out(k);
+    for (uint32_t i = 0; i < region.size(); ++i)
+      if (label[i] != kNone) out[label[i]].push_back(region[i]);
+    out.erase(std::remove_if(out.begin(), out.end(), [](const auto& v) { return v.empty(); }), out.end());
+    return out;
+  }
+
+  // Partition `region` into parts, trying k = minK.. up to 8 seeds; the first k whose parts are
+  // all disks wins, else the k = 8 partition is kept and its non-disk parts are returned in `todo`.
+  void partition(const std::vector<uint32_t>& region, uint32_t minK, std::vector<std::vector<uint32_t>>& done,
+                 std::vector<std::vector<uint32_t>>& todo) {
+    for (uint32_t i = 0; i < region.size(); ++i) local[region[i]] = i;
+    const uint32_t maxK = std::min<uint32_t>(8, uint32_t(region.size()));
+    std::vector<uint32_t> label, cut;
+    std::vector<std::vector<uint32_t>> parts;
+    for (uint32_t k = std::min(minK, maxK); k <= maxK; ++k) {
+      label = voronoiPartition(g, mask, region, local, k);
+      cut = borders(region, label);
+      parts = groups(region, label, k);
+      for (uint32_t e : cut) mask[e] = 1;
+      bool all = true;
+      for (const auto& p : parts)
+        if (!extractPatch(g, mask, p, false).isDisk()) { all = false; break; }
+      if (all || k == maxK) break;
+      for (uint32_t e : cut) mask[e] = 0;
+    }
+    for (uint32_t f : region) local[f] = kNone;
+    for (uint32_t e : cut) {
+      seg.edgeKind[e] = EdgeKind::Cut;
+      ++seg.cutEdgeCount;
+    }
+    for (auto& p : parts) {
+      if (extractPatch(g, mask, p, false).isDisk()) done.push_back(std::move(p));
+      else todo.push_back(std::move(p));
+    }
+  }
+
+  // Cut `patch` until every part is a disk; counts the parts into patchCount.
+  void toDisks(const std::vector<uint32_t>& patch, uint32_t& patchCount) {
+    std::vector<std::vector<uint32_t>> todo{patch}, done;
+    while (!todo.empty()) {
+      auto r = std::move(todo.back());
+      todo.pop_back();
+      if (extractPatch(g, mask, r, false).isDisk()) {
+        ++patchCount;
+        continue;
+      }
+      partition(r, 2, done, todo);
+      patchCount += uint32_t(done.size());
+      done.clear();
+      if (patchCount + todo.size() > maxPatches)
+        fail(Code::IterationLimit, Stage::Segment,
+             "cutting patches into disks needs more than " + std::to_string(maxPatches) + " patches");
+    }
+  }
+};
+
+// Continue every dangling feature curve (a vertex with exactly one curve edge) along the
+// straightest path of input edges until it meets a curve, so no patch contains a slit.
+void extendDanglingCurves(const EdgeGraph& g, Segmentation& seg) {
+  std::vector<uint32_t> valence(g.vertexCount, 0);
+  for (uint32_t e = 0; e < g.edgeCount(); ++e)
+    if (seg.isCurveEdge(e)) ++valence[g.edgeVerts[e][0]], ++valence[g.edgeVerts[e][1]];
+  std::vector<uint32_t> visitedStamp(g.vertexCount, kNone);
+  for (uint32_t v0 = 0; v0 < g.vertexCount; ++v0) {
+    if (valence[v0] != 1) continue;
+    uint32_t ein = kNone;
+    for (uint32_t k = g.vertexEdgeStart[v0]; k < g.vertexEdgeStart[v0 + 1]; ++k)
+      if (seg.isCurveEdge(g.vertexEdgeIds[k])) ein = g.vertexEdgeIds[k];
+    uint32_t prev = g.otherVertex(ein, v0), cur = v0;
+    visitedStamp[cur] = v0;
+    for (uint32_t step = 0; step < g.vertexCount; ++step) {
+      Vec3 dir = g.positions[cur] - g.positions[prev];
+      double best = -INFINITY;
+      uint32_t be = kNone;
+      for (uint32_t k = g.vertexEdgeStart[cur]; k < g.vertexEdgeStart[cur + 1]; ++k) {
+        uint32_t e = g.vertexEdgeIds[k];
+        if (seg.isCurveEdge(e)) continue;
+        uint32_t w = g.otherVertex(e, cur);
+        if (w == prev || visitedStamp[w] == v0) continue;
+        Vec3 d = g.positions[w] - g.positions[cur];
+        double nd = norm(d) * norm(dir);
+        double c = nd > 0 ? dot(d, dir) / nd : -1.0;
+        if (c > best) best = c, be = e;
+      }
+      if (be == kNone) break;
+      uint32_t w = g.otherVertex(be, cur);
+      seg.edgeKind[be] = EdgeKind::Cut;
+      ++seg.cutEdgeCount;
+      ++valence[cur];
+      bool stop = valence[w] > 0;
+      ++valence[w];
+      visitedStamp[w] = v0;
+      if (stop) break;
+      prev = cur;
+      cur = w;
+    }
+  }
+}
+
+}  // namespace
+
+std::vector<uint8_t> Segmentation::curveMask() const {
+  std::vector<uint8_t> m(edgeKind.size());
+  for (size_t e = 0; e < m.size(); ++e) m[e] = edgeKind[e] != EdgeKind::None;
+  return m;
+}
+
+void rebuildCurves(const EdgeGraph& g, Segmentation& seg) {
+  const double turnLimit = seg.cornerTurnDeg * kPi / 180.0;
+  std::vector<uint32_t> valence(g.vertexCount, 0);
+  std::vector<std::array<uint32_t, 2>> twoEdges(g.vertexCount, {kNone, kNone});
+  for (uint32_t e = 0; e < g.edgeCount(); ++e) {
+    if (!seg.isCurveEdge(e)) continue;
+    for (uint32_t v : g.edgeVerts[e]) {
+      if (valence[v] < 2) twoEdges[v][valence[v]] = e;
+      ++valence[v];
+    }
+  }
+  seg.vertexCorner.assign(g.vertexCount, 0);
+  for (uint32_t v = 0; v < g.vertexCount; ++v) {
+    if (valence[v] == 0) continue;
+    if (valence[v] != 2) {
+      seg.vertexCorner[v] = 1;
+      continue;
+    }
+    if (!seg.forcedCorner.empty() && seg.forcedCorner[v]) {
+      seg.vertexCorner[v] = 2;
+      continue;
+    }
+    uint32_t e1 = twoEdges[v][0], e2 = twoEdges[v][1];
+    if (seg.edgeKind[e1] != seg.edgeKind[e2]) {
+      seg.vertexCorner[v] = 1;
+      continue;
+    }
+    Vec3 a = g.positions[v] - g.positions[g.otherVertex(e1, v)];
+    Vec3 b = g.positions[g.otherVertex(e2, v)] - g.positions[v];
+    if (angleBetween(a, b) > turnLimit) seg.vertexCorner[v] = 1;
+  }
+  seg.curves.clear();
+  seg.edgeCurve.assign(g.edgeCount(), kNone);
+  auto nextEdge = [&](uint32_t v, uint32_t e) {
+    return twoEdges[v][0] == e ? twoEdges[v][1] : twoEdges[v][0];
+  };
+  auto trace = [&](uint32_t v, uint32_t e) {
+    Curve c;
+    c.kind = seg.edgeKind[e];
+    c.vertices.push_back(v);
+    for (uint32_t guard = 0; guard <= g.edgeCount(); ++guard) {
+      seg.edgeCurve[e] = uint32_t(seg.curves.size());
+      c.edges.push_back(e);
+      c.length += g.edgeLength(e);
+      v = g.otherVertex(e, v);
+      c.vertices.push_back(v);
+      if (seg.vertexCorner[v]) break;
+      e = nextEdge(v, e);
+    }
+    seg.curves.push_back(std::move(c));
+  };
+  for (uint32_t v = 0; v < g.vertexCount; ++v) {
+    if (!seg.vertexCorner[v]) continue;
+    for (uint32_t k = g.vertexEdgeStart[v]; k < g.vertexEdgeStart[v + 1]; ++k) {
+      uint32_t e = g.vertexEdgeIds[k];
+      if (seg.isCurveEdge(e) && seg.edgeCurve[e] == kNone) trace(v, e);
+    }
+  }
+  // closed loops without a corner: two artificial corners, at the start and half the length
+  for (uint32_t e0 = 0; e0 < g.edgeCount(); ++e0) {
+    if (!seg.isCurveEdge(e0) || seg.edgeCurve[e0] != kNone) continue;
+    uint32_t v = g.edgeVerts[e0][0], e = e0;
+    std::vector<uint32_t> verts{v};
+    std::vector<double> arc{0.0};
+    for (uint32_t guard = 0; guard <= g.edgeCount(); ++guard) {
+      arc.push_back(arc.back() + g.edgeLength(e));
+      v = g.otherVertex(e, v);
+      if (v == verts[0]) break;
+      verts.push_back(v);
+      e = nextEdge(v, e);
+    }
+    uint32_t half = 1;
+    for (uint32_t i = 1; i < verts.size(); ++i)
+      if (std::abs(arc[i] - 0.5 * arc.back()) < std::abs(arc[half] - 0.5 * arc.back())) half = i;
+    seg.vertexCorner[verts[0]] = 2;
+    seg.vertexCorner[verts[half]] = 2;
+    trace(verts[0], e0);
+    uint32_t back = twoEdges[verts[0]][0] == e0 ? twoEdges[verts[0]][1] : twoEdges[verts[0]][0];
+    if (seg.edgeCurve[back] == kNone) trace(verts[0], back);
+  }
+  // patches: flood fill across non-curve edges
+  seg.facePatch.assign(g.faceCount, kNone);
+  seg.patches.clear();
+  std::vector<uint32_t> stack;
+  for (uint32_t f0 = 0; f0 < g.faceCount; ++f0) {
+    if (seg.facePatch[f0] != kNone) continue;
+    uint32_t p = uint32_t(seg.patches.size());
+    seg.patches.emplace_back();
+    seg.facePatch[f0] = p;
+    stack.push_back(f0);
+    while (!stack.empty()) {
+      uint32_t f = stack.back();
+      stack.pop_back();
+      seg.patches[p].push_back(f);
+      for (uint32_t e : g.faceEdges[f]) {
+        if (seg.isCurveEdge(e)) continue;
+        uint32_t o = g.edgeFaces[e][0] == f ? g.edgeFaces[e][1] : g.edgeFaces[e][0];
+        if (o != kNone && seg.facePatch[o] == kNone) {
+          seg.facePatch[o] = p;
+          stack.push_back(o);
+        }
+      }
+    }
+  }
+  for (auto& c : seg.curves) {
+    const auto& fs = g.edgeFaces[c.edges[0]];
+    c.patches = {fs[0] == kNone ? kNone : seg.facePatch[fs[0]], fs[1] == kNone ? kNone : seg.facePatch[fs[1]]};
+  }
+}
+
+Segmentation segment(const EdgeGraph& g, const FeatureOptions& options, const ProgressFn& progress) {
+  if (!(options.featureAngleDeg >= 0 && options.featureAngleDeg <= 180))
+    fail(Code::InvalidArgument, Stage::Segment, "featureAngle must be in [0, 180] degrees");
+  if (!(options.cornerTurnDeg >= 0 && options.cornerTurnDeg <= 180))
+    fail(Code::InvalidArgument, Stage::Segment, "cornerTurn must be in [0, 180] degrees");
+  Segmentation seg;
+  seg.cornerTurnDeg = options.cornerTurnDeg;
+  seg.edgeKind.assign(g.edgeCount(), EdgeKind::None);
+  const double cosLimit = std::cos(options.featureAngleDeg * kPi / 180.0);
+  for (uint32_t e = 0; e < g.edgeCount(); ++e) {
+    if (g.isBoundary(e)) {
+      seg.edgeKind[e] = EdgeKind::Boundary;
+      continue;
+    }
+    Vec3 n0 = g.faceNormal(g.edgeFaces[e][0]), n1 = g.faceNormal(g.edgeFaces[e][1]);
+    if (norm(n0) == 0 || norm(n1) == 0) continue;  // zero-area face: no meaningful dihedral angle
+    if (dot(n0, n1) < cosLimit) {
+      seg.edgeKind[e] = EdgeKind::Feature;
+      ++seg.sharpEdgeCount;
+    }
+  }
+  for (const auto& fe : options.featureEdges) {
+    if (fe[0] >= g.vertexCount || fe[1] >= g.vertexCount)
+      fail(Code::InvalidArgument, Stage::Segment, "user feature edge refers to a vertex out of range");
+    uint32_t e = g.findEdge(fe[0], fe[1]);
+    if (e == kNone)
+      fail(Code::InvalidArgument, Stage::Segment,
+           "user feature edge (" + std::to_string(fe[0]) + ", " + std::to_string(fe[1]) + ") is not a mesh edge");
+    if (seg.edgeKind[e] == EdgeKind::None) {
+      seg.edgeKind[e] = EdgeKind::Feature;
+      ++seg.sharpEdgeCount;
+    }
+  }
+  if (progress && !progress(Stage::Segment, 0.2)) fail(Code::Cancelled, Stage::Segment, "cancelled");
+  extendDanglingCurves(g, seg);
+  rebuildCurves(g, seg);
+  if (progress && !progress(Stage::Segment, 0.4)) fail(Code::Cancelled, Stage::Segment, "cancelled");
+  Cutter cutter(g, seg, options.maxPatches);
+  uint32_t patchCount = 0;
+  auto patches = seg.patches;
+  for (size_t p = 0; p < patches.size(); ++p) {
+    cutter.toDisks(patches[p], patchCount);
+    if (progress && !progress(Stage::Segment, 0.4 + 0.55 * double(p + 1) / double(patches.size())))
+      fail(Code::Cancelled, Stage::Segment, "cancelled");
+  }
+  rebuildCurves(g, seg);
+  if (progress && !progress(Stage::Segment, 1.0)) fail(Code::Cancelled, Stage::Segment, "cancelled");
+  return seg;
+}
+
+bool splitPatch(const EdgeGraph& g, Segmentation& seg, uint32_t p, uint32_t parts) {
+  if (p >= seg.patches.size() || seg.patches[p].size() < 2) return false;
+  Cutter cutter(g, seg, 1u << 30);
+  std::vector<std::vector<uint32_t>> done, todo;
+  cutter.partition(seg.patches[p], std::max<uint32_t>(2, parts), done, todo);
+  uint32_t count = 0;
+  while (!todo.empty()) {
+    auto r = std::move(todo.back());
+    todo.pop_back();
+    cutter.toDisks(r, count);
+  }
+  rebuildCurves(g, seg);
+  return true;
+}
+
+}  // namespace conformesh::features

@@ -1,0 +1,75 @@
+// conformesh — segmentation: feature curves, corners and patches that can each be flattened.
+//
+// Pipeline stage "segment" (docs/ARCHITECTURE.md): sharp edges by dihedral angle plus user feature
+// edges and the open boundary form the feature curves; patches are the faces connected without
+// crossing a curve; every patch is then cut until it is a topological disk (closed and
+// genus > 0 patches, and patches with holes, whose flat metric has translational holonomy and
+// cannot be laid out as one planar domain). Cuts are smooth: they are not features.
+#pragma once
+
+#include <array>
+#include <cstdint>
+#include <vector>
+
+#include "core/mesh_buffers.h"
+#include "features/edge_graph.h"
+#include "features/patch_mesh.h"
+
+namespace conformesh::features {
+
+struct FeatureOptions {
+  //! An interior edge is sharp when the angle between its two face normals exceeds this (degrees).
+  double featureAngleDeg = 40.0;
+  //! A vertex inside a curve becomes a corner when the polyline turns by more than this (degrees).
+  double cornerTurnDeg = 50.0;
+  //! User feature edges as vertex pairs (need not be sharp). A pair that is not an edge is an
+  //! InvalidArgument error.
+  std::vector<std::array<uint32_t, 2>> featureEdges;
+  //! Hard cap on the number of patches cutting may create (IterationLimit when hit).
+  uint32_t maxPatches = 4096;
+};
+
+enum class EdgeKind : uint8_t { None = 0, Feature = 1, Boundary = 2, Cut = 3 };
+
+//! A curve: a polyline of input edges between two corners (corners may coincide for a closed
+//! loop through one corner).
+struct Curve {
+  EdgeKind kind = EdgeKind::Feature;
+  std::vector<uint32_t> vertices;  //!< input vertices, vertices.size() == edges.size() + 1
+  std::vector<uint32_t> edges;     //!< edges[i] joins vertices[i] and vertices[i+1]
+  std::array<uint32_t, 2> patches{kNone, kNone};  //!< patches on the two sides (kNone: none)
+  double length = 0;  //!< 3D arc length
+};
+
+struct Segmentation {
+  std::vector<EdgeKind> edgeKind;     //!< per input edge
+  std::vector<uint32_t> edgeCurve;    //!< per input edge: curve id or kNone
+  std::vector<uint8_t> vertexCorner;  //!< 0: not a corner, 1: corner, 2: artificial (closed loop)
+  std::vector<Curve> curves;
+  std::vector<uint32_t> facePatch;              //!< per input face
+  std::vector<std::vector<uint32_t>> patches;   //!< faces of each patch (each a disk)
+  uint32_t sharpEdgeCount = 0;  //!< feature edges from the dihedral angle or the user
+  uint32_t cutEdgeCount = 0;
+  double cornerTurnDeg = 50.0;  //!< the option used, kept for rebuildCurves after splits
+  //! Per vertex: 1 forces an (artificial) corner there, e.g. so a patch bounded by one smooth
+  //! loop gets the corners a polygonal planar domain needs. Empty or one per vertex.
+  std::vector<uint8_t> forcedCorner;
+
+  bool isCurveEdge(uint32_t e) const { return edgeKind[e] != EdgeKind::None; }
+  std::vector<uint8_t> curveMask() const;
+};
+
+//! Segment the mesh. Throws Error(InvalidArgument) for bad options, Error(IterationLimit) when
+//! cutting needs more than maxPatches patches, Error(Cancelled) when progress returns false.
+Segmentation segment(const EdgeGraph& g, const FeatureOptions& options, const ProgressFn& progress = {});
+
+//! Split patch `p` into at least two disks by a geodesic Voronoi partition (k farthest-point
+//! seeds, multi-source Dijkstra on the face graph) and rebuild curves, corners and patch ids.
+//! Used when a patch's conformal scale factor varies too much. Returns false when the patch is
+//! too small to split (fewer than 2 faces).
+bool splitPatch(const EdgeGraph& g, Segmentation& seg, uint32_t p, uint32_t parts = 2);
+
+//! Recompute curves, corners and patches from seg.edgeKind (after edges were marked).
+void rebuildCurves(const EdgeGraph& g, Segmentation& seg);
+
+}  // namespace conformesh::features

@@ -1,0 +1,100 @@
+#include "features/sizing.h"
+
+#include <algorithm>
+#include <cmath>
+#include <queue>
+
+namespace conformesh::features {
+
+double boundingBoxDiagonal(const EdgeGraph& g) {
+  Vec3 lo{INFINITY, INFINITY, INFINITY}, hi{-INFINITY, -INFINITY, -INFINITY};
+  for (const auto& p : g.positions) {
+    lo = {std::min(lo.x, p.x), std::min(lo.y, p.y), std::min(lo.z, p.z)};
+    hi = {std::max(hi.x, p.x), std::max(hi.y, p.y), std::max(hi.z, p.z)};
+  }
+  return g.positions.empty() ? 0.0 : norm(hi - lo);
+}
+
+SizingField computeSizing(const EdgeGraph& g, const Segmentation& seg, const SizingOptions& o) {
+  SizingField s;
+  s.diagonal = boundingBoxDiagonal(g);
+  if (!(s.diagonal > 0)) fail(Code::InvalidArgument, Stage::CurveMesh, "the mesh has a zero bounding box");
+  s.target = o.targetEdgeLength > 0 ? o.targetEdgeLength : o.targetEdgeLengthRel * s.diagonal;
+  if (!(s.target > 0) || !std::isfinite(s.target))
+    fail(Code::InvalidArgument, Stage::CurveMesh, "targetEdgeLength must be positive");
+  if (s.target < 1e-5 * s.diagonal)
+    fail(Code::TooLarge, Stage::CurveMesh, "targetEdgeLength below 1e-5 of the bbox diagonal");
+  if (!(o.gradation > 1.0)) fail(Code::InvalidArgument, Stage::CurveMesh, "gradation must be > 1");
+  if (!o.vertexSizing.empty() && o.vertexSizing.size() != g.vertexCount)
+    fail(Code::InvalidArgument, Stage::CurveMesh, "vertexSizing needs one value per input vertex");
+  s.minLength = o.minEdgeLength > 0 ? o.minEdgeLength : 0.1 * s.target;
+  s.maxLength = o.maxEdgeLength > 0 ? o.maxEdgeLength : s.target;
+  if (s.minLength > s.maxLength)
+    fail(Code::InvalidArgument, Stage::CurveMesh, "minEdgeLength exceeds maxEdgeLength");
+  s.minLength = std::max(s.minLength, 1e-5 * s.diagonal);
+  const double tol = o.chordTolerance >= 0 ? o.chordTolerance : o.chordToleranceRel * s.diagonal;
+
+  s.h.assign(g.vertexCount, s.target);
+  if (tol > 0) {
+    // vertex normals (area weighted) for vertices off the curves
+    std::vector<Vec3> vn(g.vertexCount);
+    for (uint32_t f = 0; f < g.faceCount; ++f) {
+      const auto& t = g.faces[f];
+      Vec3 n = cross(g.positions[t[1]] - g.positions[t[0]], g.positions[t[2]] - g.positions[t[0]]);
+      for (uint32_t v : t) vn[v] = vn[v] + n;
+    }
+    for (uint32_t v = 0; v < g.vertexCount; ++v) {
+      double kappa = 0;
+      uint32_t curveEdges[2], nc = 0;
+      for (uint32_t k = g.vertexEdgeStart[v]; k < g.vertexEdgeStart[v + 1]; ++k)
+        if (seg.isCurveEdge(g.vertexEdgeIds[k]) && nc++ < 2) curveEdges[nc - 1] = g.vertexEdgeIds[k];
+      if (nc == 0) {
+        double ln = norm(vn[v]);
+        if (ln == 0) continue;
+        Vec3 n = vn[v] * (1.0 / ln);
+        for (uint32_t k = g.vertexEdgeStart[v]; k < g.vertexEdgeStart[v + 1]; ++k) {
+          Vec3 d = g.positions[g.otherVertex(g.vertexEdgeIds[k], v)] - g.positions[v];
+          double dd = dot(d, d);
+          if (dd > 0) kappa = std::max(kappa, 2.0 * std::abs(dot(n, d)) / dd);
+        }
+      } else if (nc == 2 && !seg.vertexCorner[v]) {
+        Vec3 a = g.positions[v] - g.positions[g.otherVertex(curveEdges[0], v)];
+        Vec3 b = g.positions[g.otherVertex(curveEdges[1], v)] - g.positions[v];
+        double len = 0.5 * (norm(a) + norm(b));
+        if (len > 0) kappa = angleBetween(a, b) / len;
+      }
+      if (kappa > 0) s.h[v] = std::min(s.h[v], std::sqrt(8.0 * tol / kappa));
+    }
+  }
+  for (uint32_t v = 0; v < g.vertexCount; ++v) {
+    if (!o.vertexSizing.empty()) {
+      double u = o.vertexSizing[v];
+      if (!(u > 0) || !std::isfinite(u))
+        fail(Code::InvalidArgument, Stage::CurveMesh, "vertexSizing values must be positive and finite");
+      s.h[v] = std::min(s.h[v], u);
+    }
+    s.h[v] = std::clamp(s.h[v], s.minLength, s.maxLength);
+  }
+  // gradation: h(w) <= h(v) + (gradation − 1)·|vw|, smallest first (Dijkstra order)
+  const double slope = o.gradation - 1.0;
+  using Item = std::pair<double, uint32_t>;
+  std::priority_queue<Item, std::vector<Item>, std::greater<Item>> pq;
+  for (uint32_t v = 0; v < g.vertexCount; ++v) pq.push({s.h[v], v});
+  while (!pq.empty()) {
+    auto [h, v] = pq.top();
+    pq.pop();
+    if (h > s.h[v]) continue;
+    for (uint32_t k = g.vertexEdgeStart[v]; k < g.vertexEdgeStart[v + 1]; ++k) {
+      uint32_t e = g.vertexEdgeIds[k];
+      uint32_t w = g.otherVertex(e, v);
+      double nh = h + slope * g.edgeLength(e);
+      if (nh < s.h[w]) {
+        s.h[w] = nh;
+        pq.push({nh, w});
+      }
+    }
+  }
+  return s;
+}
+
+}  // namespace conformesh::features

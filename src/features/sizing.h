@@ -1,0 +1,48 @@
+// conformesh — the 3D sizing field: target edge length per input vertex.
+#pragma once
+
+#include <vector>
+
+#include "features/edge_graph.h"
+#include "features/segmentation.h"
+
+namespace conformesh::features {
+
+//! Sizing options. Lengths are in the input's units unless marked relative (to the bounding-box
+//! diagonal).
+struct SizingOptions {
+  //! Target edge length in flat regions (absolute). <= 0: use targetEdgeLengthRel.
+  double targetEdgeLength = 0;
+  //! Target edge length relative to the bbox diagonal, used when targetEdgeLength <= 0.
+  double targetEdgeLengthRel = 0.01;
+  //! Chord tolerance (absolute): an edge of length h on a surface or curve of radius r deviates
+  //! by about h²/(8r), so h <= sqrt(8 r tol). < 0: use chordToleranceRel; 0: no curvature sizing.
+  double chordTolerance = -1;
+  double chordToleranceRel = 1e-3;
+  //! Ratio bound between neighbouring edge lengths (h grows at most by (gradation − 1) per unit
+  //! of distance). Must be > 1.
+  double gradation = 1.5;
+  //! Clamps (absolute). < 0: minEdgeLength = target/10, maxEdgeLength = target.
+  double minEdgeLength = -1;
+  double maxEdgeLength = -1;
+  //! Optional per-input-vertex target lengths (absolute); empty, or one per input vertex.
+  std::vector<double> vertexSizing;
+};
+
+struct SizingField {
+  std::vector<double> h;  //!< per input vertex
+  double target = 0;      //!< resolved target edge length
+  double diagonal = 0;    //!< bbox diagonal
+  double minLength = 0, maxLength = 0;
+};
+
+//! Bounding-box diagonal of the mesh.
+double boundingBoxDiagonal(const EdgeGraph& g);
+
+//! Compute the sizing field: min(target, curvature size, user size) clamped, then graded.
+//! Curvature: smooth vertices from the osculating circle through each neighbour
+//! (κ ≈ 2|n·d|/|d|²), curve vertices from the polyline's turning angle. Throws
+//! Error(InvalidArgument) for bad options.
+SizingField computeSizing(const EdgeGraph& g, const Segmentation& seg, const SizingOptions& options);
+
+}  // namespace conformesh::features

@@ -1,0 +1,372 @@
+#include "quality/metrics.h"
+
+#include <algorithm>
+#include <cmath>
+#include <numeric>
+
+namespace conformesh::quality {
+
+namespace {
+
+constexpr double kPi = 3.14159265358979323846;
+constexpr double kDeg = 180.0 / kPi;
+
+inline Vec3 vertex(const MeshBuffers& m, uint32_t i) {
+  return {m.positions[3 * size_t(i)], m.positions[3 * size_t(i) + 1], m.positions[3 * size_t(i) + 2]};
+}
+inline Vec3 sub(const Vec3& a, const Vec3& b) { return {a[0] - b[0], a[1] - b[1], a[2] - b[2]}; }
+inline double dot(const Vec3& a, const Vec3& b) { return a[0] * b[0] + a[1] * b[1] + a[2] * b[2]; }
+inline Vec3 cross(const Vec3& a, const Vec3& b) {
+  return {a[1] * b[2] - a[2] * b[1], a[2] * b[0] - a[0] * b[2], a[0] * b[1] - a[1] * b[0]};
+}
+inline double norm(const Vec3& a) { return std::sqrt(dot(a, a)); }
+
+//! Angle between u and v in radians, by atan2(|u×v|, u·v): accurate for needles too.
+inline double angleBetween(const Vec3& u, const Vec3& v) { return std::atan2(norm(cross(u, v)), dot(u, v)); }
+
+bool triangleValid(const MeshBuffers& m, size_t f) {
+  size_t n = m.vertexCount();
+  const uint32_t* t = &m.triangles[3 * f];
+  return t[0] < n && t[1] < n && t[2] < n;
+}
+
+//! Corner angles (radians) of triangle f; false when degenerate (repeated vertex, zero area).
+bool cornerAngles(const MeshBuffers& m, size_t f, double ang[3]) {
+  if (!triangleValid(m, f)) return false;
+  const uint32_t* t = &m.triangles[3 * f];
+  if (t[0] == t[1] || t[1] == t[2] || t[2] == t[0]) return false;
+  Vec3 p[3] = {vertex(m, t[0]), vertex(m, t[1]), vertex(m, t[2])};
+  if (!(norm(cross(sub(p[1], p[0]), sub(p[2], p[0]))) > 0)) return false;
+  for (int k = 0; k < 3; ++k) ang[k] = angleBetween(sub(p[(k + 1) % 3], p[k]), sub(p[(k + 2) % 3], p[k]));
+  return std::isfinite(ang[0]) && std::isfinite(ang[1]) && std::isfinite(ang[2]);
+}
+
+//! Undirected edge with the face it came from and the corner opposite to it.
+struct EdgeRef {
+  uint32_t a, b;  // a < b
+  uint32_t face;
+  uint8_t corner;  // local index of the opposite corner in `face`
+};
+
+std::vector<EdgeRef> sortedEdgeRefs(const MeshBuffers& m) {
+  std::vector<EdgeRef> refs;
+  refs.reserve(m.triangles.size());
+  for (size_t f = 0; f < m.triangleCount(); ++f) {
+    if (!triangleValid(m, f)) continue;
+    const uint32_t* t = &m.triangles[3 * f];
+    for (int k = 0; k < 3; ++k) {
+      uint32_t a = t[(k + 1) % 3], b = t[(k + 2) % 3];
+      if (a == b) continue;
+      refs.push_back({std::min(a, b), std::max(a, b), uint32_t(f), uint8_t(k)});
+    }
+  }
+  std::sort(refs.begin(), refs.end(), [](const EdgeRef& x, const EdgeRef& y) {
+    if (x.a != y.a) return x.a < y.a;
+    if (x.b != y.b) return x.b < y.b;
+    return x.face < y.face;
+  });
+  return refs;
+}
+
+struct UnionFind {
+  std::vector<uint32_t> parent;
+  explicit UnionFind(size_t n) : parent(n) { std::iota(parent.begin(), parent.end(), 0u); }
+  uint32_t find(uint32_t x) {
+    while (parent[x] != x) x = parent[x] = parent[parent[x]];
+    return x;
+  }
+  void unite(uint32_t a, uint32_t b) {
+    a = find(a);
+    b = find(b);
+    if (a != b) parent[std::max(a, b)] = std::min(a, b);
+  }
+};
+
+Vec3 faceNormal(const MeshBuffers& m, uint32_t f) {
+  const uint32_t* t = &m.triangles[3 * size_t(f)];
+  Vec3 n = cross(sub(vertex(m, t[1]), vertex(m, t[0])), sub(vertex(m, t[2]), vertex(m, t[0])));
+  double l = norm(n);
+  if (l > 0) n = {n[0] / l, n[1] / l, n[2] / l};
+  return n;
+}
+
+//! Segments (vertex pairs) of interior manifold edges whose dihedral angle exceeds `angleDeg`.
+std::vector<std::pair<uint32_t, uint32_t>> featureEdges(const MeshBuffers& m, double angleDeg) {
+  std::vector<std::pair<uint32_t, uint32_t>> out;
+  std::vector<EdgeRef> refs = sortedEdgeRefs(m);
+  double cosLimit = std::cos(angleDeg / kDeg);
+  for (size_t i = 0; i < refs.size();) {
+    size_t j = i;
+    while (j < refs.size() && refs[j].a == refs[i].a && refs[j].b == refs[i].b) ++j;
+    if (j - i == 2) {
+      Vec3 n0 = faceNormal(m, refs[i].face), n1 = faceNormal(m, refs[i + 1].face);
+      // Dihedral (deviation between normals) above the limit <=> cos below the limit. Works for
+      // either orientation convention only when the faces are consistently oriented.
+      if (dot(n0, n0) > 0 && dot(n1, n1) > 0 && dot(n0, n1) < cosLimit) out.emplace_back(refs[i].a, refs[i].b);
+    }
+    i = j;
+  }
+  return out;
+}
+
+//! Deterministic uniform double in [0, 1) from a 64-bit generator (splitmix64; Steele et al.
+//! 2014). The same bits on every platform, unlike std::uniform_real_distribution.
+struct Rng {
+  uint64_t state;
+  uint64_t next() {
+    uint64_t z = (state += 0x9E3779B97F4A7C15ull);
+    z = (z ^ (z >> 30)) * 0xBF58476D1CE4E5B9ull;
+    z = (z ^ (z >> 27)) * 0x94D049BB133111EBull;
+    return z ^ (z >> 31);
+  }
+  double uniform() { return double(next() >> 11) * (1.0 / 9007199254740992.0); }
+};
+
+//! Sample points on a mesh: every referenced vertex, then `count` area-weighted random points
+//! (stratified by triangle: floor of the expected count plus a random rounding).
+std::vector<Vec3> samplePoints(const MeshBuffers& m, size_t count, uint64_t seed) {
+  std::vector<Vec3> pts;
+  std::vector<char> used(m.vertexCount(), 0);
+  std::vector<double> area(m.triangleCount(), 0.0);
+  double total = 0;
+  for (size_t f = 0; f < m.triangleCount(); ++f) {
+    if (!triangleValid(m, f)) continue;
+    const uint32_t* t = &m.triangles[3 * f];
+    for (int k = 0; k < 3; ++k) used[t[k]] = 1;
+    double a = 0.5 * norm(cross(sub(vertex(m, t[1]), vertex(m, t[0])), sub(vertex(m, t[2]), vertex(m, t[0]))));
+    if (std::isfinite(a)) area[f] = a;
+    total += area[f];
+  }
+  for (size_t v = 0; v < m.vertexCount(); ++v)
+    if (used[v]) pts.push_back(vertex(m, uint32_t(v)));
+  if (!(total > 0) || count == 0) return pts;
+  pts.reserve(pts.size() + count + m.triangleCount());
+  Rng rng{seed};
+  for (size_t f = 0; f < m.triangleCount(); ++f) {
+    if (!(area[f] > 0)) continue;
+    double expected = double(count) * area[f] / total;
+    size_t n = size_t(expected);
+    if (rng.uniform() < expected - double(n)) ++n;
+    const uint32_t* t = &m.triangles[3 * f];
+    Vec3 a = vertex(m, t[0]), b = vertex(m, t[1]), c = vertex(m, t[2]);
+    for (size_t s = 0; s < n; ++s) {
+      // Uniform point in a triangle (Osada et al. 2002, "Shape distributions", eq. 1).
+      double r1 = std::sqrt(rng.uniform()), r2 = rng.uniform();
+      double wa = 1 - r1, wb = r1 * (1 - r2), wc = r1 * r2;
+      pts.push_back({wa * a[0] + wb * b[0] + wc * c[0], wa * a[1] + wb * b[1] + wc * c[1],
+                     wa * a[2] + wb * b[2] + wc * c[2]});
+    }
+  }
+  return pts;
+}
+
+//! Max and mean distance from points to a mesh.
+void oneSided(const std::vector<Vec3>& pts, const TriangleMeshDistance& target, double& maxD, double& meanD) {
+  maxD = 0;
+  double sum = 0;
+  for (const Vec3& p : pts) {
+    double d = std::sqrt(target.closest(p).distanceSquared);
+    if (!std::isfinite(d)) d = 0;  // target empty: nothing to measure against
+    maxD = std::max(maxD, d);
+    sum += d;
+  }
+  meanD = pts.empty() ? 0 : sum / double(pts.size());
+}
+
+}  // namespace
+
+AngleStats angleStats(const MeshBuffers& mesh) {
+  AngleStats s;
+  s.triangles = mesh.triangleCount();
+  if (s.triangles == 0) return s;
+  s.minAngle = 180;
+  s.maxAngle = 0;
+  double sumMin = 0;
+  size_t below20 = 0, below26 = 0, below30 = 0;
+  for (size_t f = 0; f < s.triangles; ++f) {
+    double ang[3];
+    double mn, mx;
+    if (cornerAngles(mesh, f, ang)) {
+      mn = std::min({ang[0], ang[1], ang[2]}) * kDeg;
+      mx = std::max({ang[0], ang[1], ang[2]}) * kDeg;
+    } else {
+      ++s.degenerateTriangles;
+      mn = 0;
+      mx = 180;
+    }
+    s.minAngle = std::min(s.minAngle, mn);
+    s.maxAngle = std::max(s.maxAngle, mx);
+    sumMin += mn;
+    below20 += mn < 20;
+    below26 += mn < 26;
+    below30 += mn < 30;
+    int bin = std::clamp(int(mn / 5.0), 0, 12);
+    ++s.minAngleHistogram[bin];
+  }
+  double n = double(s.triangles);
+  s.meanMinAngle = sumMin / n;
+  s.pctBelow20 = 100.0 * double(below20) / n;
+  s.pctBelow26 = 100.0 * double(below26) / n;
+  s.pctBelow30 = 100.0 * double(below30) / n;
+  return s;
+}
+
+EdgeStats edgeStats(const MeshBuffers& mesh) {
+  EdgeStats s;
+  std::vector<EdgeRef> refs = sortedEdgeRefs(mesh);
+  double sum = 0;
+  size_t interior = 0, delaunay = 0;
+  s.minLength = std::numeric_limits<double>::infinity();
+  for (size_t i = 0; i < refs.size();) {
+    size_t j = i;
+    while (j < refs.size() && refs[j].a == refs[i].a && refs[j].b == refs[i].b) ++j;
+    double len = norm(sub(vertex(mesh, refs[i].a), vertex(mesh, refs[i].b)));
+    ++s.edges;
+    sum += len;
+    s.minLength = std::min(s.minLength, len);
+    s.maxLength = std::max(s.maxLength, len);
+    if (j - i == 2) {
+      ++interior;
+      double a0[3], a1[3];
+      bool ok0 = cornerAngles(mesh, refs[i].face, a0), ok1 = cornerAngles(mesh, refs[i + 1].face, a1);
+      if (ok0 && ok1 && a0[refs[i].corner] + a1[refs[i + 1].corner] <= kPi + 1e-12) ++delaunay;
+    }
+    i = j;
+  }
+  if (s.edges == 0) s.minLength = 0;
+  s.meanLength = s.edges ? sum / double(s.edges) : 0;
+  s.delaunayFraction = interior ? double(delaunay) / double(interior) : 1.0;
+  return s;
+}
+
+TopologySummary topologySummary(const MeshBuffers& mesh) {
+  TopologySummary t;
+  size_t nv = mesh.vertexCount();
+  std::vector<char> used(nv, 0);
+  UnionFind comps(nv);
+  for (size_t f = 0; f < mesh.triangleCount(); ++f) {
+    if (!triangleValid(mesh, f)) continue;
+    ++t.faces;
+    const uint32_t* tri = &mesh.triangles[3 * f];
+    for (int k = 0; k < 3; ++k) used[tri[k]] = 1;
+    comps.unite(tri[0], tri[1]);
+    comps.unite(tri[1], tri[2]);
+  }
+  for (size_t v = 0; v < nv; ++v) {
+    if (!used[v]) continue;
+    ++t.vertices;
+    if (comps.find(uint32_t(v)) == v) ++t.components;
+  }
+  std::vector<EdgeRef> refs = sortedEdgeRefs(mesh);
+  UnionFind loops(nv);
+  std::vector<char> onBoundary(nv, 0);
+  for (size_t i = 0; i < refs.size();) {
+    size_t j = i;
+    while (j < refs.size() && refs[j].a == refs[i].a && refs[j].b == refs[i].b) ++j;
+    ++t.edges;
+    if (j - i == 1) {
+      ++t.boundaryEdges;
+      onBoundary[refs[i].a] = onBoundary[refs[i].b] = 1;
+      loops.unite(refs[i].a, refs[i].b);
+    } else if (j - i > 2) {
+      ++t.nonManifoldEdges;
+    }
+    i = j;
+  }
+  for (size_t v = 0; v < nv; ++v)
+    if (onBoundary[v] && loops.find(uint32_t(v)) == v) ++t.boundaryLoops;
+  t.euler = (long long)t.vertices - (long long)t.edges + (long long)t.faces;
+  if (t.nonManifoldEdges == 0) {
+    long long twice = 2 * (long long)t.components - t.euler - (long long)t.boundaryLoops;
+    t.genus = twice >= 0 && twice % 2 == 0 ? twice / 2 : -1;
+  }
+  return t;
+}
+
+Box3 boundingBox(const MeshBuffers& mesh) {
+  Box3 box;
+  std::vector<char> used(mesh.vertexCount(), 0);
+  bool any = false;
+  for (size_t f = 0; f < mesh.triangleCount(); ++f) {
+    if (!triangleValid(mesh, f)) continue;
+    for (int k = 0; k < 3; ++k) used[mesh.triangles[3 * f + k]] = 1;
+    any = true;
+  }
+  for (size_t v = 0; v < mesh.vertexCount(); ++v)
+    if (!any || used[v]) box.add(vertex(mesh, uint32_t(v)));
+  return box;
+}
+
+TriangleMeshDistance::TriangleMeshDistance(const MeshBuffers& mesh) : mesh_(mesh) {
+  std::vector<Box3> boxes(mesh.triangleCount());
+  for (size_t f = 0; f < mesh.triangleCount(); ++f) {
+    if (!triangleValid(mesh, f)) continue;  // empty box: never closer than anything
+    for (int k = 0; k < 3; ++k) boxes[f].add(vertex(mesh, mesh.triangles[3 * f + k]));
+  }
+  tree_.build(boxes);
+}
+
+ClosestHit TriangleMeshDistance::closest(const Vec3& p) const {
+  return tree_.closest(p, [this](uint32_t f, const Vec3& q) {
+    if (!triangleValid(mesh_, f)) return std::numeric_limits<double>::infinity();
+    const uint32_t* t = &mesh_.triangles[3 * size_t(f)];
+    Vec3 c = closestPointOnTriangle(q, vertex(mesh_, t[0]), vertex(mesh_, t[1]), vertex(mesh_, t[2]));
+    return distanceSquared(q, c);
+  });
+}
+
+HausdorffResult hausdorffDistance(const MeshBuffers& a, const MeshBuffers& b, const HausdorffOptions& options) {
+  HausdorffResult r;
+  r.diagonal = boundingBox(b).diagonal();
+  std::vector<Vec3> sa = samplePoints(a, options.samplesPerSide, options.seed);
+  std::vector<Vec3> sb = samplePoints(b, options.samplesPerSide, options.seed + 1);
+  r.samplesA = sa.size();
+  r.samplesB = sb.size();
+  {
+    TriangleMeshDistance toB(b);
+    oneSided(sa, toB, r.aToB, r.meanAToB);
+  }
+  {
+    TriangleMeshDistance toA(a);
+    oneSided(sb, toA, r.bToA, r.meanBToA);
+  }
+  r.hausdorff = std::max(r.aToB, r.bToA);
+  r.relative = r.diagonal > 0 ? r.hausdorff / r.diagonal : 0;
+  return r;
+}
+
+FeatureResult featurePreservation(const MeshBuffers& output, const MeshBuffers& reference,
+                                  const FeatureOptions& options) {
+  FeatureResult r;
+  auto refEdges = featureEdges(reference, options.featureAngle);
+  auto outEdges = featureEdges(output, options.outputFeatureAngle);
+  r.referenceFeatureEdges = refEdges.size();
+  r.outputFeatureEdges = outEdges.size();
+  double tol = options.tolerance > 0 ? options.tolerance : 1e-4 * boundingBox(reference).diagonal();
+  std::vector<Box3> boxes(outEdges.size());
+  for (size_t i = 0; i < outEdges.size(); ++i) {
+    boxes[i].add(vertex(output, outEdges[i].first));
+    boxes[i].add(vertex(output, outEdges[i].second));
+  }
+  AabbTree tree(boxes);
+  int k = std::max(1, options.samplesPerEdge);
+  for (const auto& e : refEdges) {
+    Vec3 p = vertex(reference, e.first), q = vertex(reference, e.second);
+    for (int s = 0; s < k; ++s) {
+      double t = (s + 0.5) / k;
+      Vec3 x = {p[0] + t * (q[0] - p[0]), p[1] + t * (q[1] - p[1]), p[2] + t * (q[2] - p[2])};
+      ClosestHit hit = tree.closest(x, [&](uint32_t i, const Vec3& y) {
+        return distanceSquared(y, closestPointOnSegment(y, vertex(output, outEdges[i].first),
+                                                        vertex(output, outEdges[i].second)));
+      });
+      double d = std::sqrt(hit.distanceSquared);
+      ++r.samples;
+      if (d <= tol) ++r.kept;
+      r.maxDistance = std::max(r.maxDistance, d);  // infinity when the output has no feature edge
+    }
+  }
+  r.fractionKept = r.samples ? double(r.kept) / double(r.samples) : 1.0;
+  return r;
+}
+
+}  // namespace conformesh::quality

@@ -1,0 +1,123 @@
+// conformesh — mesh quality measures: angles, edge lengths, topology, two-sided Hausdorff
+// distance, feature preservation.
+//
+// These measure any triangle mesh given as flat arrays (our output, a peer's output, an input),
+// so they tolerate what a validator would reject: degenerate and non-manifold triangles are
+// counted, never an error. The remesh report (stage `report`) and the benchmark's quality tool
+// (bench/quality_tool.cpp) both use them, so every mesher is judged by the same code.
+#pragma once
+
+#include <cstddef>
+#include <cstdint>
+
+#include "core/mesh_buffers.h"
+#include "quality/aabb_tree.h"
+
+namespace conformesh::quality {
+
+//! Triangle angle statistics, in degrees. A degenerate triangle (zero area or a repeated vertex)
+//! counts with min angle 0 and max angle 180: it is below every bound.
+struct AngleStats {
+  size_t triangles = 0;
+  size_t degenerateTriangles = 0;
+  double minAngle = 0;      //!< smallest corner angle of the mesh
+  double maxAngle = 0;      //!< largest corner angle of the mesh
+  double meanMinAngle = 0;  //!< mean over triangles of each triangle's smallest angle
+  double pctBelow20 = 0;    //!< % of triangles whose smallest angle is < 20°
+  double pctBelow26 = 0;    //!< ... < 26°
+  double pctBelow30 = 0;    //!< ... < 30°
+  //! Histogram of per-triangle min angles: bin i counts [5i, 5i+5) degrees, bin 12 is [60, 60].
+  size_t minAngleHistogram[13] = {};
+};
+
+//! Angle statistics of every triangle. Indices must be < vertexCount() (precondition: the
+//! caller validated the buffers; out-of-range triangles are counted as degenerate).
+AngleStats angleStats(const MeshBuffers& mesh);
+
+//! Edge lengths (unique undirected edges) and the fraction of interior manifold edges that are
+//! Delaunay in 3D (sum of the two opposite angles ≤ π, with 1e-12 slack).
+struct EdgeStats {
+  size_t edges = 0;
+  double minLength = 0, maxLength = 0, meanLength = 0;
+  double delaunayFraction = 1.0;  //!< over interior edges with exactly two faces
+};
+EdgeStats edgeStats(const MeshBuffers& mesh);
+
+//! Combinatorial topology from the index arrays alone.
+//! boundaryLoops counts connected components of the boundary-edge graph (two loops pinched at a
+//! vertex count as one). genus = (2·components − χ − boundaryLoops) / 2, only meaningful when
+//! nonManifoldEdges == 0 (else genus is −1).
+struct TopologySummary {
+  size_t vertices = 0;  //!< referenced vertices
+  size_t edges = 0;
+  size_t faces = 0;
+  size_t components = 0;  //!< edge-connected components of the referenced vertices
+  size_t boundaryEdges = 0;
+  size_t boundaryLoops = 0;
+  size_t nonManifoldEdges = 0;  //!< edges with more than two faces
+  long long euler = 0;          //!< V − E + F
+  long long genus = -1;
+};
+TopologySummary topologySummary(const MeshBuffers& mesh);
+
+//! Axis-aligned bounding box of the referenced vertices (all vertices if none are referenced).
+Box3 boundingBox(const MeshBuffers& mesh);
+
+//! Closest-point queries on a triangle mesh (AABB tree over its triangles). Keeps a reference to
+//! the mesh: it must outlive the object.
+class TriangleMeshDistance {
+ public:
+  explicit TriangleMeshDistance(const MeshBuffers& mesh);
+  //! Squared distance from p to the mesh, and the closest triangle (primitive −1 and infinity
+  //! when the mesh has no valid triangle).
+  ClosestHit closest(const Vec3& p) const;
+
+ private:
+  const MeshBuffers& mesh_;
+  AabbTree tree_;
+};
+
+struct HausdorffOptions {
+  //! Points sampled on each surface, area-weighted, in addition to its vertices.
+  size_t samplesPerSide = 200000;
+  uint64_t seed = 1;  //!< fixed seed: results are deterministic (same on native and WASM)
+};
+
+//! Sampled two-sided Hausdorff distance between meshes A and B (absolute units): the largest
+//! distance from a sample of one surface to the other surface, and the mean. Samples are the
+//! vertices plus area-weighted random points; the result is a lower bound of the true distance
+//! that converges as samples grow. `diagonal` is B's bounding-box diagonal (B is the reference,
+//! normally the input) and `relative` = hausdorff / diagonal.
+struct HausdorffResult {
+  double aToB = 0, bToA = 0;          //!< max one-sided distances
+  double meanAToB = 0, meanBToA = 0;  //!< mean one-sided distances
+  double hausdorff = 0;               //!< max(aToB, bToA)
+  double diagonal = 0;
+  double relative = 0;
+  size_t samplesA = 0, samplesB = 0;
+};
+HausdorffResult hausdorffDistance(const MeshBuffers& a, const MeshBuffers& b,
+                                  const HausdorffOptions& options = {});
+
+//! How well the output keeps the reference's sharp features. Reference feature edges: interior
+//! edges (two faces) with dihedral angle > `featureAngle` degrees. Each is sampled at
+//! `samplesPerEdge` interior points; a sample is kept when it lies within `tolerance` (absolute)
+//! of an output feature edge (dihedral > `outputFeatureAngle`).
+struct FeatureOptions {
+  double featureAngle = 60.0;
+  double outputFeatureAngle = 30.0;
+  int samplesPerEdge = 4;
+  double tolerance = 0;  //!< absolute; 0 = 1e-4 · reference bbox diagonal
+};
+struct FeatureResult {
+  size_t referenceFeatureEdges = 0;
+  size_t outputFeatureEdges = 0;
+  size_t samples = 0;
+  size_t kept = 0;
+  double fractionKept = 1.0;  //!< 1 when the reference has no feature edge
+  double maxDistance = 0;     //!< largest sample distance to the output feature edges
+};
+FeatureResult featurePreservation(const MeshBuffers& output, const MeshBuffers& reference,
+                                  const FeatureOptions& options = {});
+
+}  // namespace conformesh::quality

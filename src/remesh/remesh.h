@@ -1,0 +1,106 @@
+// conformesh — the remesh pipeline: a triangle mesh in, a new high-quality triangulation of the
+// same surface out (docs/ARCHITECTURE.md):
+//   validate -> segment (features, patches cut to disks) -> curve-mesh (shared samples) ->
+//   per patch: flatten (Ricci flow, corner-preserving boundary) -> refine (planar Delaunay
+//   refinement, h_plane = h_3D · planar/3D scale) -> lift (pull-back onto the input surface)
+//   -> stitch (one vertex per curve sample) -> 3D angle certificate -> report.
+#pragma once
+
+#include <array>
+#include <cstddef>
+#include <cstdint>
+#include <string>
+#include <vector>
+
+#include "core/mesh_buffers.h"
+#include "core/status.h"
+
+namespace conformesh {
+
+struct RemeshOptions {
+  //! Angle bound (degrees) for every output triangle, measured in 3D, except at exempt corners
+  //! (input corners whose own angle is below it). Range [0, 34].
+  double minAngleDeg = 30.0;
+  //! Target edge length: the mean output edge length in flat regions. Absolute when > 0, else
+  //! targetEdgeLengthRel times the bounding-box diagonal.
+  double targetEdgeLength = 0.0;
+  double targetEdgeLengthRel = 0.01;
+  //! Curvature adaptation: chord deviation bound (absolute when >= 0, else chordToleranceRel ·
+  //! diagonal; 0 switches curvature sizing off).
+  double chordTolerance = -1.0;
+  double chordToleranceRel = 1e-3;
+  //! Neighbouring edge length ratio bound (> 1).
+  double gradation = 1.5;
+  //! Edge length clamps (absolute; < 0: target/10 and target).
+  double minEdgeLength = -1.0;
+  double maxEdgeLength = -1.0;
+  //! Optional per-input-vertex target edge length (absolute), one per input vertex.
+  std::vector<double> vertexSizing;
+  //! Sharp edges: dihedral angle above this (degrees) are features.
+  double featureAngleDeg = 40.0;
+  //! A feature curve turning by more than this at a vertex gets a corner there (degrees).
+  double cornerTurnDeg = 50.0;
+  //! User feature edges (input vertex pairs).
+  std::vector<std::array<uint32_t, 2>> featureEdges;
+  //! A patch whose conformal scale factor ratio max/min e^u exceeds this is split in two (the
+  //! planar sizing would otherwise span a huge range and the flow's layout lose precision).
+  double maxScaleRatio = 50.0;
+  //! Cap on the rounds of the 3D angle certificate (re-meshing patches with smaller planar size
+  //! where a lifted triangle is below the bound).
+  int maxCertificateRounds = 3;
+  //! Two-sided Hausdorff distance in the report (sampled; costs time on big meshes).
+  bool computeHausdorff = true;
+  size_t hausdorffSamples = 50000;
+};
+
+//! An input corner whose angle (3D, inside one patch) is below the bound: triangles touching it
+//! cannot all meet the bound and are listed.
+struct ExemptCorner {
+  uint32_t inputVertex = 0;
+  uint32_t outputVertex = 0;
+  double angleDeg = 0.0;
+  std::vector<uint32_t> triangles;  //!< output triangles touching the corner
+};
+
+struct StageSeconds {
+  double validate = 0, segment = 0, curveMesh = 0, flatten = 0, refine = 0, lift = 0, stitch = 0,
+         report = 0, total = 0;
+};
+
+struct RemeshReport {
+  size_t inputTriangles = 0, inputVertices = 0;
+  size_t triangles = 0, vertices = 0;
+  double minAngle = 0, maxAngle = 0, meanMinAngle = 0;  //!< degrees, all triangles
+  double pctBelow20 = 0, pctBelow26 = 0, pctBelow30 = 0;
+  double minAngleOutsideExempt = 0;  //!< smallest angle over triangles not touching an exempt corner
+  size_t trianglesBelowBoundOutsideExempt = 0;
+  std::vector<ExemptCorner> exemptCorners;
+  double meanEdgeLength = 0;
+  double targetEdgeLength = 0;
+  double delaunayFraction = 0;  //!< interior edges that are Delaunay in 3D
+  double hausdorffRel = -1;     //!< two-sided, relative to the input bbox diagonal (-1: not computed)
+  double maxDistanceToInputRel = 0;  //!< largest output vertex distance to the input / diagonal
+  size_t featureCurves = 0, featureCurvesKept = 0;
+  size_t sharpEdges = 0, cutEdges = 0;
+  size_t patches = 0, curves = 0, curveSamples = 0;
+  std::vector<int> flowIterations;  //!< Newton iterations per patch
+  size_t patchSplitsForScale = 0;
+  int conformingRounds = 0, certificateRounds = 0;
+  bool topologyPreserved = false;
+  StageSeconds seconds;
+  std::vector<std::string> warnings;
+};
+
+struct RemeshResult {
+  Status status;  //!< Ok, or the failure (mesh then empty)
+  MeshBuffers mesh;
+  RemeshReport report;
+};
+
+//! Remesh a triangle mesh. Never throws: failures come back in `status` (codes from the input
+//! validation, InvalidArgument for bad options, IterationLimit when a cap is hit, Cancelled,
+//! NumericalFailure from the flattening). Progress goes through every stage; returning false
+//! cancels.
+RemeshResult remesh(const MeshBuffers& input, const RemeshOptions& options = {}, ProgressFn progress = {});
+
+}  // namespace conformesh

@@ -1,0 +1,151 @@
+#include <doctest/doctest.h>
+
+#include <algorithm>
+#include <cmath>
+#include <set>
+
+#include "features/curve_mesh.h"
+#include "features/edge_graph.h"
+#include "features/segmentation.h"
+#include "features/sizing.h"
+#include "features/test_shapes.h"
+
+using namespace conformesh;
+using namespace conformesh::features;
+
+namespace {
+uint32_t countCorners(const Segmentation& s, uint8_t kind) {
+  return uint32_t(std::count(s.vertexCorner.begin(), s.vertexCorner.end(), kind));
+}
+void checkPatchesAreDisks(const EdgeGraph& g, const Segmentation& s) {
+  auto mask = s.curveMask();
+  size_t faces = 0;
+  for (size_t p = 0; p < s.patches.size(); ++p) {
+    PatchMesh pm = extractPatch(g, mask, s.patches[p]);
+    CHECK(pm.isDisk());
+    for (uint32_t f : s.patches[p]) CHECK(s.facePatch[f] == p);
+    faces += s.patches[p].size();
+  }
+  CHECK(faces == g.faceCount);
+}
+}  // namespace
+
+TEST_CASE("features: cube has 12 feature curves, 8 corners, 6 disk patches") {
+  EdgeGraph g = buildEdgeGraph(testshapes::cube(4));
+  Segmentation s = segment(g, FeatureOptions{});
+  CHECK(s.curves.size() == 12);
+  CHECK(countCorners(s, 1) == 8);
+  CHECK(countCorners(s, 2) == 0);
+  CHECK(s.patches.size() == 6);
+  CHECK(s.cutEdgeCount == 0);
+  for (const auto& c : s.curves) {
+    CHECK(c.kind == EdgeKind::Feature);
+    CHECK(c.patches[0] != c.patches[1]);
+    CHECK(c.length == doctest::Approx(1.0));
+  }
+  checkPatchesAreDisks(g, s);
+}
+
+TEST_CASE("features: a feature angle above 90 degrees finds no feature on the cube, which is cut into disks") {
+  EdgeGraph g = buildEdgeGraph(testshapes::cube(6));
+  FeatureOptions o;
+  o.featureAngleDeg = 95;
+  Segmentation s = segment(g, o);
+  CHECK(s.sharpEdgeCount == 0);
+  CHECK(s.patches.size() >= 2);
+  CHECK(s.cutEdgeCount > 0);
+  checkPatchesAreDisks(g, s);
+}
+
+TEST_CASE("features: cylinder with caps: two circles with artificial corners, disks after cutting") {
+  EdgeGraph g = buildEdgeGraph(testshapes::cylinder(24, 8, 4));
+  Segmentation s = segment(g, FeatureOptions{});
+  uint32_t features = 0;
+  for (uint32_t e = 0; e < g.edgeCount(); ++e) features += s.edgeKind[e] == EdgeKind::Feature;
+  CHECK(features == 48);
+  CHECK(countCorners(s, 2) + countCorners(s, 1) >= 4);
+  checkPatchesAreDisks(g, s);
+  // Euler: V − E + F of the curve graph + patches = 2 for a sphere
+  std::set<uint32_t> curveVerts;
+  for (const auto& c : s.curves) curveVerts.insert(c.vertices.front()), curveVerts.insert(c.vertices.back());
+  CHECK(long(curveVerts.size()) - long(s.curves.size()) + long(s.patches.size()) == 2);
+}
+
+TEST_CASE("features: torus (genus 1, closed) is cut into disks") {
+  EdgeGraph g = buildEdgeGraph(testshapes::torus(32, 12));
+  Segmentation s = segment(g, FeatureOptions{});
+  CHECK(s.sharpEdgeCount == 0);
+  CHECK(s.patches.size() >= 2);
+  checkPatchesAreDisks(g, s);
+  std::set<uint32_t> curveVerts;
+  for (const auto& c : s.curves) curveVerts.insert(c.vertices.front()), curveVerts.insert(c.vertices.back());
+  CHECK(long(curveVerts.size()) - long(s.curves.size()) + long(s.patches.size()) == 0);
+}
+
+TEST_CASE("features: bad options and bad user feature edges are errors") {
+  EdgeGraph g = buildEdgeGraph(testshapes::square(3));
+  FeatureOptions o;
+  o.featureAngleDeg = -1;
+  CHECK_THROWS_AS(segment(g, o), Error);
+  o = {};
+  o.featureEdges.push_back({0, 15});
+  try {
+    segment(g, o);
+    FAIL("no error");
+  } catch (const Error& e) {
+    CHECK(e.code() == Code::InvalidArgument);
+  }
+}
+
+TEST_CASE("features: curve samples lie on the input polyline, ends at corners, spacing follows the size") {
+  EdgeGraph g = buildEdgeGraph(testshapes::cylinder(48, 8, 4));
+  Segmentation s = segment(g, FeatureOptions{});
+  SizingOptions so;
+  so.targetEdgeLengthRel = 0.02;
+  SizingField sz = computeSizing(g, s, so);
+  CurveMesh cm = sampleCurves(g, s, sz);
+  REQUIRE(cm.curveSamples.size() == s.curves.size());
+  for (size_t c = 0; c < s.curves.size(); ++c) {
+    const auto& ids = cm.curveSamples[c];
+    REQUIRE(ids.size() >= 2);
+    CHECK(cm.samples[ids.front()].vertex == s.curves[c].vertices.front());
+    CHECK(cm.samples[ids.back()].vertex == s.curves[c].vertices.back());
+    std::set<uint32_t> curveEdges(s.curves[c].edges.begin(), s.curves[c].edges.end());
+    for (uint32_t id : ids) {
+      const CurveSample& smp = cm.samples[id];
+      if (smp.vertex != kNone)
+        CHECK(std::count(s.curves[c].vertices.begin(), s.curves[c].vertices.end(), smp.vertex) >= 1);
+      else
+        CHECK(curveEdges.count(smp.edge) == 1);
+      const Vec3& p0 = g.positions[g.edgeVerts[smp.edge][0]];
+      const Vec3& p1 = g.positions[g.edgeVerts[smp.edge][1]];
+      Vec3 q = p0 * (1 - smp.t) + p1 * smp.t;
+      CHECK(norm(q - smp.position) <= 1e-12);
+      CHECK(smp.t >= 0.0);
+      CHECK(smp.t <= 1.0);
+    }
+    // chord lengths within a factor of the sizing (curvature makes them smaller, never larger)
+    for (size_t i = 0; i + 1 < ids.size(); ++i) {
+      double d = norm(cm.samples[ids[i + 1]].position - cm.samples[ids[i]].position);
+      CHECK(d <= 1.6 * sz.maxLength);
+      CHECK(d > 0.0);
+    }
+  }
+}
+
+TEST_CASE("sizing: graded, clamped, smaller where curved") {
+  EdgeGraph g = buildEdgeGraph(testshapes::torus(64, 24, 1.0, 0.1));
+  Segmentation s = segment(g, FeatureOptions{});
+  SizingOptions so;
+  so.targetEdgeLengthRel = 0.05;
+  so.chordToleranceRel = 1e-4;
+  SizingField sz = computeSizing(g, s, so);
+  double lo = *std::min_element(sz.h.begin(), sz.h.end()), hi = *std::max_element(sz.h.begin(), sz.h.end());
+  CHECK(lo >= sz.minLength);
+  CHECK(hi <= sz.maxLength);
+  CHECK(lo < sz.target);  // tube radius 0.1 with a tight chord tolerance
+  for (uint32_t e = 0; e < g.edgeCount(); ++e) {
+    uint32_t a = g.edgeVerts[e][0], b = g.edgeVerts[e][1];
+    CHECK(std::abs(sz.h[a] - sz.h[b]) <= 0.5 * g.edgeLength(e) * (1 + 1e-9));
+  }
+}

@@ -1,0 +1,119 @@
+// Small generated meshes for the features and remesh tests (closed, consistently oriented, outward).
+#pragma once
+
+#include <cmath>
+#include <cstdint>
+#include <map>
+#include <tuple>
+#include <vector>
+
+#include "core/mesh_buffers.h"
+
+namespace conformesh::testshapes {
+
+struct Builder {
+  MeshBuffers m;
+  std::map<std::tuple<long long, long long, long long>, uint32_t> index;
+  uint32_t vertex(double x, double y, double z) {
+    auto key = std::make_tuple(std::llround(x * 1e9), std::llround(y * 1e9), std::llround(z * 1e9));
+    auto it = index.find(key);
+    if (it != index.end()) return it->second;
+    uint32_t id = uint32_t(m.positions.size() / 3);
+    m.positions.insert(m.positions.end(), {x, y, z});
+    index.emplace(key, id);
+    return id;
+  }
+  void tri(uint32_t a, uint32_t b, uint32_t c) { m.triangles.insert(m.triangles.end(), {a, b, c}); }
+};
+
+//! Axis-aligned cube [0, s]^3, every face an n × n grid of quads split into two triangles.
+inline MeshBuffers cube(int n, double s = 1.0) {
+  Builder b;
+  // face: origin o, axes u, v with u × v outward
+  const double F[6][9] = {{0, 0, 0, 0, 1, 0, 1, 0, 0}, {0, 0, 1, 1, 0, 0, 0, 1, 0},
+                          {0, 0, 0, 1, 0, 0, 0, 0, 1}, {0, 1, 0, 0, 0, 1, 1, 0, 0},
+                          {0, 0, 0, 0, 0, 1, 0, 1, 0}, {1, 0, 0, 0, 1, 0, 0, 0, 1}};
+  for (const auto& f : F) {
+    auto P = [&](int i, int j) {
+      double a = double(i) / n, c = double(j) / n;
+      return b.vertex(s * (f[0] + a * f[3] + c * f[6]), s * (f[1] + a * f[4] + c * f[7]),
+                      s * (f[2] + a * f[5] + c * f[8]));
+    };
+    for (int i = 0; i < n; ++i)
+      for (int j = 0; j < n; ++j) {
+        uint32_t p00 = P(i, j), p10 = P(i + 1, j), p01 = P(i, j + 1), p11 = P(i + 1, j + 1);
+        b.tri(p00, p10, p11);
+        b.tri(p00, p11, p01);
+      }
+  }
+  return b.m;
+}
+
+//! Closed cylinder: radius r, height h, m segments around, k rings along the axis, flat caps
+//! made of rings too (c rings from the centre).
+inline MeshBuffers cylinder(int m, int k, int c, double r = 0.5, double h = 1.0) {
+  Builder b;
+  const double pi = 3.14159265358979323846;
+  auto side = [&](int i, int j) {
+    double a = 2 * pi * (i % m) / m;
+    return b.vertex(r * std::cos(a), r * std::sin(a), h * j / k);
+  };
+  for (int i = 0; i < m; ++i)
+    for (int j = 0; j < k; ++j) {
+      uint32_t p00 = side(i, j), p10 = side(i + 1, j), p01 = side(i, j + 1), p11 = side(i + 1, j + 1);
+      b.tri(p00, p10, p11);
+      b.tri(p00, p11, p01);
+    }
+  for (int top = 0; top < 2; ++top) {
+    double z = top ? h : 0.0;
+    auto cap = [&](int i, int ring) {
+      if (ring == 0) return b.vertex(0, 0, z);
+      double a = 2 * pi * (i % m) / m, rr = r * ring / c;
+      return b.vertex(rr * std::cos(a), rr * std::sin(a), z);
+    };
+    for (int i = 0; i < m; ++i)
+      for (int ring = 0; ring < c; ++ring) {
+        uint32_t a0 = cap(i, ring), a1 = cap(i + 1, ring), b0 = cap(i, ring + 1), b1 = cap(i + 1, ring + 1);
+        if (top) {
+          if (ring > 0) b.tri(a0, b1, a1);
+          b.tri(a0, b0, b1);
+        } else {
+          if (ring > 0) b.tri(a0, a1, b1);
+          b.tri(a0, b1, b0);
+        }
+      }
+  }
+  return b.m;
+}
+
+//! Torus: major radius R, minor radius r, m × n quads split into triangles.
+inline MeshBuffers torus(int m, int n, double R = 1.0, double r = 0.35) {
+  Builder b;
+  const double pi = 3.14159265358979323846;
+  auto P = [&](int i, int j) {
+    double u = 2 * pi * (i % m) / m, v = 2 * pi * (j % n) / n;
+    return b.vertex((R + r * std::cos(v)) * std::cos(u), (R + r * std::cos(v)) * std::sin(u), r * std::sin(v));
+  };
+  for (int i = 0; i < m; ++i)
+    for (int j = 0; j < n; ++j) {
+      uint32_t p00 = P(i, j), p10 = P(i + 1, j), p01 = P(i, j + 1), p11 = P(i + 1, j + 1);
+      b.tri(p00, p10, p11);
+      b.tri(p00, p11, p01);
+    }
+  return b.m;
+}
+
+//! A flat square [0,1]^2 grid (open, one boundary loop).
+inline MeshBuffers square(int n) {
+  Builder b;
+  for (int i = 0; i < n; ++i)
+    for (int j = 0; j < n; ++j) {
+      uint32_t p00 = b.vertex(double(i) / n, double(j) / n, 0), p10 = b.vertex(double(i + 1) / n, double(j) / n, 0);
+      uint32_t p01 = b.vertex(double(i) / n, double(j + 1) / n, 0), p11 = b.vertex(double(i + 1) / n, double(j + 1) / n, 0);
+      b.tri(p00, p10, p11);
+      b.tri(p00, p11, p01);
+    }
+  return b.m;
+}
+
+}  // namespace conformesh::testshapes

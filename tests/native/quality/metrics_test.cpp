@@ -1,0 +1,166 @@
+#include <doctest/doctest.h>
+
+#include <cmath>
+
+#include "quality/metrics.h"
+
+using namespace conformesh;
+using namespace conformesh::quality;
+
+namespace {
+
+//! An n×n grid of squares on [0,1]², each split along a diagonal, lifted by z = f(x, y).
+template <class F>
+MeshBuffers grid(int n, F height) {
+  MeshBuffers m;
+  for (int j = 0; j <= n; ++j)
+    for (int i = 0; i <= n; ++i) {
+      double x = double(i) / n, y = double(j) / n;
+      m.positions.insert(m.positions.end(), {x, y, height(x, y)});
+    }
+  auto id = [n](int i, int j) { return uint32_t(j * (n + 1) + i); };
+  for (int j = 0; j < n; ++j)
+    for (int i = 0; i < n; ++i) {
+      m.triangles.insert(m.triangles.end(), {id(i, j), id(i + 1, j), id(i + 1, j + 1)});
+      m.triangles.insert(m.triangles.end(), {id(i, j), id(i + 1, j + 1), id(i, j + 1)});
+    }
+  return m;
+}
+
+//! Closed unit cube, 12 triangles, outward orientation.
+MeshBuffers cube() {
+  MeshBuffers m;
+  for (int k = 0; k < 8; ++k) m.positions.insert(m.positions.end(), {double(k & 1), double((k >> 1) & 1), double((k >> 2) & 1)});
+  m.triangles = {0, 2, 1, 1, 2, 3, 4, 5, 6, 5, 7, 6, 0, 1, 4, 1, 5, 4,
+                 2, 6, 3, 3, 6, 7, 0, 4, 2, 2, 4, 6, 1, 3, 5, 3, 7, 5};
+  return m;
+}
+
+}  // namespace
+
+TEST_CASE("angle stats: an equilateral triangle has all angles 60°") {
+  MeshBuffers m;
+  m.positions = {0, 0, 0, 1, 0, 0, 0.5, std::sqrt(3.0) / 2, 0};
+  m.triangles = {0, 1, 2};
+  AngleStats s = angleStats(m);
+  CHECK(s.triangles == 1);
+  CHECK(s.degenerateTriangles == 0);
+  CHECK(s.minAngle == doctest::Approx(60.0).epsilon(1e-12));
+  CHECK(s.maxAngle == doctest::Approx(60.0).epsilon(1e-12));
+  CHECK(s.meanMinAngle == doctest::Approx(60.0).epsilon(1e-12));
+  CHECK(s.pctBelow30 == 0.0);
+}
+
+TEST_CASE("angle stats: right isosceles triangles, a needle and a degenerate triangle") {
+  MeshBuffers m = grid(4, [](double, double) { return 0.0; });
+  AngleStats s = angleStats(m);
+  CHECK(s.minAngle == doctest::Approx(45.0));
+  CHECK(s.maxAngle == doctest::Approx(90.0));
+  CHECK(s.pctBelow30 == 0.0);
+
+  MeshBuffers bad;
+  bad.positions = {0, 0, 0, 1, 0, 0, 0.5, 1e-3, 0, 2, 0, 0};
+  bad.triangles = {0, 1, 2, 0, 1, 3};  // a needle (angle ~0.11°) and a collinear (zero-area) one
+  AngleStats b = angleStats(bad);
+  CHECK(b.degenerateTriangles == 1);
+  CHECK(b.minAngle == 0.0);
+  CHECK(b.maxAngle == 180.0);
+  CHECK(b.pctBelow20 == 100.0);
+  CHECK(b.minAngleHistogram[0] == 2);
+}
+
+TEST_CASE("edge stats: a flat grid split along one diagonal is Delaunay (cocircular ties count)") {
+  MeshBuffers m = grid(3, [](double, double) { return 0.0; });
+  EdgeStats e = edgeStats(m);
+  CHECK(e.edges == size_t(3 * 4 * 2 + 9));
+  CHECK(e.minLength == doctest::Approx(1.0 / 3));
+  CHECK(e.maxLength == doctest::Approx(std::sqrt(2.0) / 3));
+  CHECK(e.delaunayFraction == doctest::Approx(1.0));
+
+  // A thin rhombus split along its long diagonal is not Delaunay.
+  MeshBuffers r;
+  r.positions = {-1, 0, 0, 0, -0.1, 0, 1, 0, 0, 0, 0.1, 0};
+  r.triangles = {0, 1, 2, 0, 2, 3};
+  CHECK(edgeStats(r).delaunayFraction == 0.0);
+}
+
+TEST_CASE("topology: disk, closed cube, two components, a non-manifold fin") {
+  TopologySummary disk = topologySummary(grid(5, [](double, double) { return 0.0; }));
+  CHECK(disk.components == 1);
+  CHECK(disk.boundaryLoops == 1);
+  CHECK(disk.euler == 1);
+  CHECK(disk.genus == 0);
+
+  MeshBuffers c = cube();
+  TopologySummary ct = topologySummary(c);
+  CHECK(ct.euler == 2);
+  CHECK(ct.boundaryLoops == 0);
+  CHECK(ct.genus == 0);
+
+  // Two disjoint cubes: two components, χ = 4, genus 0.
+  MeshBuffers two = c;
+  for (size_t i = 0; i < c.positions.size(); ++i) two.positions.push_back(c.positions[i] + (i % 3 == 0 ? 5.0 : 0.0));
+  for (uint32_t t : c.triangles) two.triangles.push_back(t + 8);
+  TopologySummary tt = topologySummary(two);
+  CHECK(tt.components == 2);
+  CHECK(tt.euler == 4);
+  CHECK(tt.genus == 0);
+
+  // A third triangle on one edge: non-manifold, genus undefined.
+  MeshBuffers fin;
+  fin.positions = {0, 0, 0, 1, 0, 0, 0, 1, 0, 0, -1, 0, 0, 0, 1};
+  fin.triangles = {0, 1, 2, 1, 0, 3, 0, 1, 4};
+  TopologySummary ft = topologySummary(fin);
+  CHECK(ft.nonManifoldEdges == 1);
+  CHECK(ft.genus == -1);
+}
+
+TEST_CASE("closest point on a triangle: regions and a degenerate triangle") {
+  Vec3 a{0, 0, 0}, b{1, 0, 0}, c{0, 1, 0};
+  auto near = [](const Vec3& p, const Vec3& q) { return distanceSquared(p, q) < 1e-24; };
+  CHECK(near(closestPointOnTriangle({0.2, 0.2, 3}, a, b, c), {0.2, 0.2, 0}));   // face
+  CHECK(near(closestPointOnTriangle({-1, -1, 0}, a, b, c), a));                 // vertex
+  CHECK(near(closestPointOnTriangle({0.5, -2, 1}, a, b, c), {0.5, 0, 0}));      // edge ab
+  CHECK(near(closestPointOnTriangle({1, 1, 0}, a, b, c), {0.5, 0.5, 0}));       // edge bc
+  CHECK(near(closestPointOnTriangle({0.5, 1, 0}, a, b, Vec3{2, 0, 0}), {0.5, 0, 0}));  // collinear
+}
+
+TEST_CASE("Hausdorff: a mesh to itself is 0; to a translated copy it is the translation") {
+  MeshBuffers m = grid(8, [](double x, double y) { return 0.3 * std::sin(3 * x) * std::cos(2 * y); });
+  HausdorffOptions opt;
+  opt.samplesPerSide = 20000;
+  HausdorffResult self = hausdorffDistance(m, m, opt);
+  CHECK(self.hausdorff < 1e-12);
+  CHECK(self.samplesA >= 20000);
+
+  // A closed surface moved by t along a direction: the sampled distance tends to |t| from below
+  // (the farthest points are on faces facing the motion).
+  MeshBuffers c = cube();
+  MeshBuffers moved = c;
+  double t = 0.05;
+  for (size_t i = 0; i < moved.positions.size(); i += 3) moved.positions[i] += t;
+  HausdorffResult h = hausdorffDistance(moved, c, opt);
+  CHECK(h.hausdorff <= t * (1 + 1e-12));
+  CHECK(h.hausdorff >= t * (1 - 1e-9));  // cube vertices themselves sit exactly t away
+  CHECK(h.relative == doctest::Approx(t / std::sqrt(3.0)));
+  CHECK(h.meanAToB > 0);
+  CHECK(h.meanAToB < t);
+
+  // Deterministic: same seed, same answer bit for bit.
+  HausdorffResult h2 = hausdorffDistance(moved, c, opt);
+  CHECK(h2.hausdorff == h.hausdorff);
+  CHECK(h2.meanBToA == h.meanBToA);
+}
+
+TEST_CASE("feature preservation: a cube keeps its edges; a smooth copy does not") {
+  MeshBuffers c = cube();
+  FeatureResult same = featurePreservation(c, c);
+  CHECK(same.referenceFeatureEdges == 12);  // the 12 cube edges (face diagonals are flat)
+  CHECK(same.fractionKept == 1.0);
+
+  // The flat grid has no sharp edge at all: nothing is kept of the cube's features.
+  MeshBuffers flat = grid(4, [](double, double) { return 0.0; });
+  FeatureResult none = featurePreservation(flat, c);
+  CHECK(none.outputFeatureEdges == 0);
+  CHECK(none.fractionKept == 0.0);
+}

@@ -1,0 +1,86 @@
+#include <doctest/doctest.h>
+
+#include <algorithm>
+#include <cmath>
+#include <set>
+
+#include "features/test_shapes.h"
+#include "quality/metrics.h"
+#include "remesh/remesh.h"
+
+using namespace conformesh;
+
+namespace {
+// Properties every remesh output must have: manifold, same topology as the input, vertices on the
+// input surface, min 3D angle >= bound except around the listed exempt corners.
+void checkRemesh(const MeshBuffers& in, const RemeshOptions& o, const char* name) {
+  INFO(name);
+  RemeshResult r = remesh(in, o);
+  REQUIRE_MESSAGE(r.status.ok(), r.status.message);
+  const MeshBuffers& m = r.mesh;
+  REQUIRE(m.triangleCount() > 0);
+  auto ti = quality::topologySummary(in), to = quality::topologySummary(m);
+  CHECK(to.nonManifoldEdges == 0);
+  CHECK(to.components == ti.components);
+  CHECK(to.boundaryLoops == ti.boundaryLoops);
+  CHECK(to.genus == ti.genus);
+  CHECK(r.report.topologyPreserved);
+  // consistent orientation: every interior edge used once in each direction
+  std::set<std::pair<uint32_t, uint32_t>> directed;
+  for (size_t t = 0; t < m.triangles.size(); t += 3)
+    for (int c = 0; c < 3; ++c) CHECK(directed.insert({m.triangles[t + c], m.triangles[t + (c + 1) % 3]}).second);
+  // on the input surface
+  quality::TriangleMeshDistance dist(in);
+  double diag = r.report.targetEdgeLength / o.targetEdgeLengthRel;
+  double worst = 0;
+  for (size_t v = 0; v < m.vertexCount(); ++v)
+    worst = std::max(worst, dist.closest({m.positions[3 * v], m.positions[3 * v + 1], m.positions[3 * v + 2]}).distanceSquared);
+  CHECK(std::sqrt(worst) <= 1e-9 * diag);
+  // every feature curve is made of output edges
+  CHECK(r.report.featureCurvesKept == r.report.featureCurves);
+  // angle bound outside exempt corners
+  CHECK(r.report.trianglesBelowBoundOutsideExempt == 0);
+  CHECK(r.report.minAngleOutsideExempt >= o.minAngleDeg - 1e-9);
+  // size: mean edge length near the target (flat shapes)
+  CHECK(r.report.meanEdgeLength > 0.6 * r.report.targetEdgeLength);
+  CHECK(r.report.meanEdgeLength < 1.4 * r.report.targetEdgeLength);
+}
+}  // namespace
+
+TEST_CASE("remesh: cube keeps its 12 edges, 30 degree bound, vertices on the surface") {
+  RemeshOptions o;
+  o.targetEdgeLengthRel = 0.05;
+  o.hausdorffSamples = 2000;
+  checkRemesh(testshapes::cube(4), o, "cube");
+}
+
+// Known failing (see the remesh branch report): a segment split on a curved feature is not
+// yet recorded at the right place in the curve, and slivers remain at the circles.
+TEST_CASE("remesh: cylinder with caps" * doctest::skip(true)) {
+  RemeshOptions o;
+  o.targetEdgeLengthRel = 0.05;
+  o.hausdorffSamples = 2000;
+  checkRemesh(testshapes::cylinder(48, 12, 6), o, "cylinder");
+}
+
+// Known failing: the cut patches of the torus do not stitch into a manifold yet.
+TEST_CASE("remesh: torus (genus 1)" * doctest::skip(true)) {
+  RemeshOptions o;
+  o.targetEdgeLengthRel = 0.04;
+  o.hausdorffSamples = 2000;
+  checkRemesh(testshapes::torus(64, 24), o, "torus");
+}
+
+TEST_CASE("remesh: bad options and bad input come back as a status") {
+  RemeshOptions o;
+  o.minAngleDeg = 50;
+  RemeshResult r = remesh(testshapes::cube(2), o);
+  CHECK(r.status.code == Code::InvalidArgument);
+  MeshBuffers empty;
+  r = remesh(empty, RemeshOptions{});
+  CHECK_FALSE(r.status.ok());
+  o = {};
+  int calls = 0;
+  r = remesh(testshapes::cube(3), o, [&](Stage, double) { return ++calls < 3; });
+  CHECK(r.status.code == Code::Cancelled);
+}
