@@ -47,9 +47,10 @@ val refine2dJs(val points, val segments, val segmentMarkers, val holes, val opti
       fail(Code::InvalidArgument, Stage::Refine, "segmentMarkers must be empty or hold one marker per segment");
 
     planar::RefineOptions o;
-    o.minAngleDeg = bindings::numberOption(options, "minAngle", o.minAngleDeg, Stage::Refine, 0, 34);
-    o.maxArea = bindings::numberOption(options, "maxArea", o.maxArea, Stage::Refine, 0);
-    o.maxEdge = bindings::numberOption(options, "maxEdge", o.maxEdge, Stage::Refine, 0);
+    // ranges are checked by refinePslg (the same messages as the native CLI)
+    o.minAngleDeg = bindings::numberOption(options, "minAngle", o.minAngleDeg, Stage::Refine);
+    o.maxArea = bindings::numberOption(options, "maxArea", o.maxArea, Stage::Refine);
+    o.maxEdge = bindings::numberOption(options, "maxEdge", o.maxEdge, Stage::Refine);
     if (o.maxArea > 0 && o.maxEdge > 0)
       fail(Code::InvalidArgument, Stage::Refine, "give maxArea or maxEdge, not both");
     o.maxInsertions = size_t(bindings::numberOption(options, "maxInsertions", double(o.maxInsertions), Stage::Refine, 0,
