@@ -2,7 +2,11 @@
 // areas), one uv per vertex, circle boundary, errors, worker vs direct.
 import { afterAll, describe, expect, it } from 'vitest';
 import { createRemesher, flatten, init, readMesh, type ProgressEvent } from '../../dist/index.js';
-import { dataFile } from './helpers.js';
+import { readFileSync } from 'node:fs';
+import { join } from 'node:path';
+import { dataFile, root } from './helpers.js';
+
+const sample = (name: string) => readFileSync(join(root, 'web', 'samples', name));
 
 /** Signed area of each triangle of a planar layout (x, y taken from stride-`dim` positions). */
 function signedAreas(p: Float64Array, t: Uint32Array, dim: number): Float64Array {
@@ -72,6 +76,25 @@ describe('flatten', async () => {
       expect(r.report.maxCurvatureError).toBeLessThanOrEqual(1e-9);
       expect(Math.min(...signedAreas(r.layout.positions, r.layout.triangles, 3))).toBeGreaterThan(0);
     }
+  });
+
+  it('annulus (disk with a hole): two boundary loops, a valid layout; heap flat over 100 calls (and 100 failing ones)', async () => {
+    const cm = await init();
+    const annulus = cm.readMesh(sample('annulus.ply'));
+    const r = cm.flatten(annulus);
+    expect(r.report.boundaryLoops).toBe(2);
+    expect(r.boundaryLoops.length).toBe(2);
+    expect(r.report.gaussBonnetError).toBeLessThan(1e-8);
+    expect(Math.min(...signedAreas(r.layout.positions, r.layout.triangles, 3))).toBeGreaterThan(0);
+    const disk = cm.readMesh(sample('disk.obj'));
+    const closed = cm.readMesh(sample('icosphere.obj'));
+    cm.flatten(disk);
+    const before = cm.heapStats().used;
+    for (let i = 0; i < 100; ++i) {
+      cm.flatten(disk, { boundary: i % 2 ? 'free' : 'circle' });
+      expect(() => cm.flatten(closed)).toThrow(expect.objectContaining({ code: 'InvalidTopology' }));
+    }
+    expect(Math.abs(cm.heapStats().used - before)).toBeLessThanOrEqual(0.01 * before);
   });
 
   it('fails with InvalidTopology on a closed mesh, InvalidArgument on bad options, IterationLimit at the cap', async () => {
