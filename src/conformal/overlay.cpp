@@ -56,8 +56,11 @@ Unfold unfold(const IT& T, int hx, OverlayGeometry geo) {
   return U;
 }
 
-// Line coefficients (n . P = 0) from F coordinates to G coordinates.
-Vec3 mapLine(const Unfold& U, const Vec3& n) {
+// Line coefficients (n . P = 0) from F coordinates to G coordinates. noinline: with emcc 3.1.6
+// (clang 14) at -O2 the inlined stores by run-time slot index into std::array were
+// miscompiled in the tracing loop (traces went astray in WASM only; -O0 and native were
+// correct); kept out of line, the WASM and native results agree.
+__attribute__((noinline)) Vec3 mapLine(const Unfold& U, const Vec3& n) {
   Vec3 m;
   m[U.ta] = n[U.sa];
   m[U.tb] = n[U.sb];
@@ -69,7 +72,7 @@ Vec3 mapLine(const Unfold& U, const Vec3& n) {
 }
 
 // Point (decorated vector) coordinates from F to G.
-Vec3 mapPoint(const Unfold& U, const Vec3& p) {
+__attribute__((noinline)) Vec3 mapPoint(const Unfold& U, const Vec3& p) {
   Vec3 q;
   const double dd = p[U.sc] / U.z;
   q[U.td] = dd;
@@ -207,11 +210,13 @@ OverlayMap buildOverlayMap(const IT& src, const IT& T, OverlayGeometry geo) {
     const double corner = T.cornerSize(g);
     const double f = std::clamp(off / corner, 0.0, 1.0);
     const int y = T.tip(g), z = T.vert[IT::prev(g)];
-    if (f < 1e-10 && y == j) {
+    // An edge that was flipped away and back is the same curve again: its direction matches a
+    // target edge to round-off (flips carry positions with relative error ~1e-15 each).
+    if (f < 1e-7 && y == j) {
       sourceOfTarget[T.edge[g]] = ein;
       continue;
     }
-    if (f > 1 - 1e-10 && z == j) {
+    if (f > 1 - 1e-7 && z == j) {
       sourceOfTarget[T.edge[IT::prev(g)]] = ein;
       continue;
     }
@@ -240,6 +245,10 @@ OverlayMap buildOverlayMap(const IT& src, const IT& T, OverlayGeometry geo) {
     for (;;) {
       if (T.twin[exitH] < 0) numerical("flatten/overlay: an edge left the domain while being traced");
       if (++crossings > maxCrossings) fail(Code::TooLarge, Stage::Flatten, "flatten/overlay: too many crossings");
+      if (path.size() > size_t(T.nF) + 2)
+        numerical("flatten/overlay: edge " + std::to_string(i) + "-" + std::to_string(j) + " lost while traced (f " +
+                  std::to_string(f) + ", corner " + std::to_string(corner) + ", y " + std::to_string(y) + ", z " + std::to_string(z) +
+                  ", p " + std::to_string(p) + ", k " + std::to_string(k - s0) + "/" + std::to_string(s1 - s0) + ")");
       const Unfold U = unfold(T, exitH, geo);
       n = mapLine(U, n);
       vi = mapPoint(U, vi);
