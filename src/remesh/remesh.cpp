@@ -46,6 +46,8 @@ struct PatchWork {
   std::vector<double> hSub;      // 3D target length per sub vertex
   std::vector<double> scaleSub;  // planar length per 3D length, per sub vertex
   std::vector<Spot> spots;
+  std::vector<std::pair<uint32_t, double>> bcCorners;  // sub vertex, planar target angle
+  std::vector<double> wedgeAngle;                      // 3D angle sum per sub vertex
   // latest meshing
   std::vector<uint32_t> localToGlobal;  // planar vertex -> output vertex (samples first)
   std::vector<F::Vec3> interiorPositions;  // positions of planar vertices that are interior
@@ -246,6 +248,8 @@ void Pipeline::flattenPatches() {
       if (!w->pm.isDisk()) fail(Code::InternalError, Stage::Flatten, "a patch is not a disk after cutting");
       FlattenOptions fo;
       fo.corners = boundaryCorners(w->pm);
+      w->bcCorners = fo.corners;
+      w->wedgeAngle = cornerWedgeAngles(w->pm);
       fo.boundary = fo.corners.empty() ? BoundaryCondition::Circle : BoundaryCondition::Corners;
       if (fo.corners.empty()) rep_.warnings.push_back("patch with a round (circle) boundary condition: no usable corners");
       try {
@@ -431,6 +435,12 @@ uint32_t Pipeline::addSplitSample(const PatchWork& w, const std::vector<Boundary
   size_t pos = 1;
   while (pos + 1 < ids.size() && curveKey(c, ids[pos]) < key) ++pos;
   ids.insert(ids.begin() + long(pos), id);
+  if (std::getenv("CONFORMESH_DEBUG4")) {
+    uint32_t c0 = seg_.edgeCurve[cm_.samples[p0.sample].edge], c1 = seg_.edgeCurve[cm_.samples[p1.sample].edge];
+    std::fprintf(stderr, "split seg %u (samples %u -> %u, curves %u %u) t=%.3f -> sample %u on curve %u key %.3f; keys ends %.3f %.3f; pieces %zu\n", s, p0.sample, p1.sample, c0, c1, t, id, c,
+                 key, std::find(ids.begin(), ids.end(), p0.sample) != ids.end() ? curveKey(c, p0.sample) : -1.0,
+                 std::find(ids.begin(), ids.end(), p1.sample) != ids.end() ? curveKey(c, p1.sample) : -1.0, pieces.size());
+  }
   ++stamp_;
   for (uint32_t q : seg_.curves[c].patches)
     if (q != kNone && work_[q]->builtAt < stamp_) work_[q]->dirty = true;
@@ -447,6 +457,32 @@ void Pipeline::meshPatch(uint32_t p) {
   planar::Pslg pslg;
   for (const auto& b : bp) pslg.points.insert(pslg.points.end(), {b.x, b.y});
   for (uint32_t i = 0; i < bp.size(); ++i) pslg.segments.insert(pslg.segments.end(), {i, uint32_t((i + 1) % bp.size())});
+  // At a boundary-condition corner whose planar angle differs much from its 3D angle, a single
+  // planar triangle there would carry the whole distortion: put a point on the bisector so the
+  // corner fan has at least two triangles.
+  {
+    std::map<uint32_t, double> target(w.bcCorners.begin(), w.bcCorners.end());
+    const auto& loop = w.pm.boundaryLoops[0];
+    const size_t n = bp.size();
+    for (size_t i = 0; i < n; ++i) {
+      if (bp[i].param != 0.0) continue;
+      const auto& h = loop[bp[i].loopPos];
+      uint32_t sv = w.pm.mesh.triangles[3 * h.face + h.corner];
+      auto it = target.find(sv);
+      if (it == target.end() || std::abs(it->second - w.wedgeAngle[sv]) < 15.0 * kPi / 180.0) continue;
+      if (seg_.vertexCorner[w.pm.vertexInput[sv]] != 2 || it->second > w.wedgeAngle[sv]) continue;
+      const BoundaryPoint& Q = bp[(i + n - 1) % n];
+      const BoundaryPoint& R = bp[(i + 1) % n];
+      double rx = R.x - bp[i].x, ry = R.y - bp[i].y, qx = Q.x - bp[i].x, qy = Q.y - bp[i].y;
+      double lr = std::hypot(rx, ry), lq = std::hypot(qx, qy);
+      if (lr == 0 || lq == 0) continue;
+      double theta = std::atan2(rx * qy - ry * qx, rx * qx + ry * qy);
+      if (theta <= 0) theta += 2 * kPi;
+      double c = std::cos(0.5 * theta), sn = std::sin(0.5 * theta);
+      double d = 0.5 * std::min(lr, lq);
+      pslg.points.insert(pslg.points.end(), {bp[i].x + d * (c * rx - sn * ry) / lr, bp[i].y + d * (sn * rx + c * ry) / lr});
+    }
+  }
   planar::RefineOptions ro;
   ro.minAngleDeg = std::min(opt_.minAngleDeg, 34.0);
   // Longest-edge bound of the refinement vs the mean edge length it gives: calibrated so the
@@ -493,7 +529,7 @@ void Pipeline::meshPatch(uint32_t p) {
       w.localToGlobal[v] = bp[v].sample;
       continue;
     }
-    if (pmsh.vertexSegment[v] >= 0 || onBoundary[v]) {
+    if (onBoundary[v]) {
       // a Steiner vertex on a boundary segment: its segment and parameter by projection (robust
       // whatever direction the refinement stores the segment in)
       double best = INFINITY, bt = 0;
@@ -728,6 +764,7 @@ RemeshResult Pipeline::run(const MeshBuffers& input) {
   MeshBuffers bestOut;
   std::vector<uint32_t> bestTriPatch;
   size_t bestBad = SIZE_MAX;
+  std::vector<std::vector<uint32_t>> bestCurveSamples;
   for (int cert = 0;; ++cert) {
     int round = 0;
     {
@@ -775,6 +812,7 @@ RemeshResult Pipeline::run(const MeshBuffers& input) {
       bestBad = bad;
       bestOut = out;
       bestTriPatch = triPatch;
+      bestCurveSamples = cm_.curveSamples;
     } else {
       // refining made it worse (a boundary-condition corner whose planar and 3D angles differ
       // cannot be fixed by size): keep the best round
@@ -806,6 +844,7 @@ RemeshResult Pipeline::run(const MeshBuffers& input) {
   }
   out = std::move(bestOut);
   triPatch = std::move(bestTriPatch);
+  cm_.curveSamples = std::move(bestCurveSamples);
   rep_.seconds.lift = liftSeconds_;
   rep_.seconds.refine -= liftSeconds_;
   rep_.seconds.stitch = elapsed(t0);
