@@ -11,6 +11,16 @@ if [ ! -x "$EXE" ]; then
   exit 1
 fi
 
+# The remesh pipeline on the embedded default model: a cube made by our own generator, remeshed
+# with the defaults (edge length 1% of the diagonal, min angle 30 degrees); the report as a table.
+tmp=$(mktemp -d)
+trap 'rm -rf "$tmp"' EXIT
+"$EXE" generate cube -o "$tmp/cube.obj" --level 3 >/dev/null
+echo "conformesh: remesh of the default model (generated cube, defaults)"
+echo
+"$EXE" remesh "$tmp/cube.obj" -o "$tmp/cube-remeshed.obj"
+echo
+
 files=(web/samples/*.obj web/samples/*.off web/samples/*.stl web/samples/*.ply)
 if [ -d ../shared/data ]; then
   for f in ../shared/data/*; do
