@@ -1,9 +1,18 @@
 // The synchronous API over one module instance. Each function checks its arguments (a wrong
 // type is an InvalidArgument ConformeshError, never a crash inside the module), copies them into
 // the shapes the glue expects, calls the glue through callRaw, and returns plain JS values.
+import { progressBridge, type ProgressOptions } from './progress.js';
 import { callRaw, requireExport, type RawModule } from './raw.js';
 import { ConformeshError, invalidArgument, type StageName } from './status.js';
 import type {
+  FlattenOptions,
+  FlattenResult,
+  Pslg,
+  PslgLike,
+  Refine2dOptions,
+  Refine2dResult,
+  RemeshOptions,
+  RemeshResult,
   Mesh,
   MeshBytes,
   MeshFormat,
@@ -29,6 +38,22 @@ export interface Conformesh {
   meshInfo(mesh: MeshLike, options?: Pick<ValidateOptions, 'maxVertices' | 'maxTriangles'>): MeshInfo;
   /** Validate and repair: a consistently oriented manifold mesh, or a ConformeshError saying why not. */
   validateMesh(mesh: MeshLike, options?: ValidateOptions): ValidateResult;
+  /**
+   * Quality triangulation of a planar straight-line graph (constrained Delaunay refinement):
+   * every triangle that is not exempt gets min angle ≥ options.minAngle. `call` gives progress
+   * and cancel (an aborted signal fails with 'Cancelled'). Failures: InvalidPslg, IndexOutOfRange,
+   * NonFiniteCoordinate, InvalidArgument, Cancelled. Reaching maxInsertions is `status: 'IterationLimit'`.
+   */
+  refine2d(pslg: PslgLike, options?: Refine2dOptions, call?: ProgressOptions): Refine2dResult;
+  /** Parse a Triangle .poly file into a PSLG (ParseError with the line number). */
+  readPoly(bytes: MeshBytes): Pslg;
+  /**
+   * Conformal flattening of a disk-like patch (or a disk with holes) by discrete Ricci flow with
+   * intrinsic Delaunay flips: uv per vertex, the conformal factor u, the intrinsic layout, the report.
+   */
+  flatten(mesh: MeshLike, options?: FlattenOptions, call?: ProgressOptions): FlattenResult;
+  /** Remesh a surface (flatten per patch, planar refinement, lift): the new mesh and its quality report. */
+  remesh(mesh: MeshLike, options?: RemeshOptions, call?: ProgressOptions): RemeshResult;
   /** The C++ status table. */
   statusTable(): StatusRow[];
   /** Bytes allocated in the module's heap, and the WASM memory size (for leak checks). */
@@ -57,17 +82,17 @@ function toFloat64(name: string, x: unknown, stage: StageName): Float64Array {
   return Float64Array.from(x, (v) => (typeof v === 'number' ? v : Number.NaN));
 }
 
-function toIndices(x: unknown, stage: StageName): Uint32Array {
+function toIndices(x: unknown, stage: StageName, name = 'triangles'): Uint32Array {
   if (x instanceof Uint32Array) return x;
-  if (!isArrayLike(x)) throw invalidArgument('triangles must be a Uint32Array or an array of vertex indices', stage);
+  if (!isArrayLike(x)) throw invalidArgument(`${name} must be a Uint32Array or an array of vertex indices`, stage);
   const out = new Uint32Array(x.length);
   for (let i = 0; i < x.length; ++i) {
     const v = x[i];
     if (typeof v !== 'number' || !Number.isInteger(v)) {
-      throw invalidArgument(`triangles[${i}] = ${String(v)} is not an integer vertex index`, stage);
+      throw invalidArgument(`${name}[${i}] = ${String(v)} is not an integer vertex index`, stage);
     }
     if (v < 0 || v > 0xffffffff) {
-      throw new ConformeshError('IndexOutOfRange', stage, `triangles[${i}] = ${v} is not a valid vertex index`);
+      throw new ConformeshError('IndexOutOfRange', stage, `${name}[${i}] = ${v} is not a valid vertex index`);
     }
     out[i] = v;
   }
@@ -87,6 +112,76 @@ export function toMesh(mesh: unknown, stage: StageName = 'api'): Mesh {
   if (m.uvs !== undefined && m.uvs !== null) out.uvs = toFloat64('uvs', m.uvs, stage);
   return out;
 }
+
+const EMPTY_U32 = new Uint32Array(0);
+const EMPTY_I32 = new Int32Array(0);
+
+function toInt32(name: string, x: unknown, stage: StageName): Int32Array {
+  if (x instanceof Int32Array) return x;
+  if (!isArrayLike(x)) throw invalidArgument(`${name} must be an Int32Array or an array of integers`, stage);
+  const out = new Int32Array(x.length);
+  for (let i = 0; i < x.length; ++i) {
+    const v = x[i];
+    if (typeof v !== 'number' || !Number.isInteger(v) || v < -0x80000000 || v > 0x7fffffff) {
+      throw invalidArgument(`${name}[${i}] = ${String(v)} is not a 32-bit integer`, stage);
+    }
+    out[i] = v;
+  }
+  return out;
+}
+
+/** The PSLG's arrays in the element types the glue expects (copied only when needed). */
+export function toPslg(pslg: unknown, stage: StageName = 'refine'): Pslg {
+  if (typeof pslg !== 'object' || pslg === null) {
+    throw invalidArgument('pslg must be an object { points, segments?, holes?, segmentMarkers? }', stage);
+  }
+  const p = pslg as Partial<PslgLike>;
+  const out: Pslg = {
+    points: toFloat64('points', p.points, stage),
+    segments: p.segments == null ? EMPTY_U32 : toIndices(p.segments, stage, 'segments'),
+    holes: p.holes == null ? EMPTY_F64 : toFloat64('holes', p.holes, stage),
+  };
+  if (p.segmentMarkers != null) out.segmentMarkers = toInt32('segmentMarkers', p.segmentMarkers, stage);
+  return out;
+}
+
+const refineKeys: (keyof Refine2dOptions)[] = [
+  'minAngle',
+  'maxArea',
+  'maxEdge',
+  'maxInsertions',
+  'convexHull',
+  'holesByOrientation',
+  'offcenters',
+  'diametralLens',
+];
+
+const flattenKeys: (keyof FlattenOptions)[] = [
+  'boundary',
+  'cornerAngle',
+  'flips',
+  'tolerance',
+  'maxIterations',
+  'balanceMobius',
+  'requireValidLayout',
+];
+
+const remeshKeys: (keyof RemeshOptions)[] = [
+  'minAngle',
+  'targetEdgeLength',
+  'targetEdgeLengthRel',
+  'chordTolerance',
+  'chordToleranceRel',
+  'gradation',
+  'minEdgeLength',
+  'maxEdgeLength',
+  'featureAngle',
+  'cornerTurn',
+  'maxScaleRatio',
+  'maxCertificateRounds',
+  'computeHausdorff',
+  'hausdorffSamples',
+];
 
 const validateKeys: (keyof ValidateOptions)[] = [
   'maxVertices',
@@ -164,6 +259,53 @@ export function bindApi(raw: RawModule): Conformesh {
       const o = pickOptions(options, validateKeys, 'validate');
       const fn = requireExport(raw, 'validateMesh');
       return callRaw(raw, 'validateMesh', 'validate', () => fn(m.positions, m.triangles, m.uvs ?? EMPTY_F64, o));
+    },
+
+    refine2d(pslg, options, call) {
+      const p = toPslg(pslg);
+      const o = pickOptions(options, refineKeys, 'refine');
+      const fn = requireExport(raw, 'refine2d');
+      const bridge = progressBridge(call);
+      try {
+        return callRaw(raw, 'refine2d', 'refine', () =>
+          fn(p.points, p.segments ?? EMPTY_U32, p.segmentMarkers ?? EMPTY_I32, p.holes ?? EMPTY_F64, o, bridge.fn),
+        );
+      } finally {
+        bridge.rethrow();
+      }
+    },
+
+    readPoly(bytes) {
+      const data = toBytes(bytes);
+      const fn = requireExport(raw, 'readPoly');
+      return callRaw(raw, 'readPoly', 'read', () => fn(data));
+    },
+
+    flatten(mesh, options, call) {
+      const m = toMesh(mesh, 'flatten');
+      const o = pickOptions(options, flattenKeys, 'flatten');
+      const fn = requireExport(raw, 'flatten');
+      const bridge = progressBridge(call);
+      try {
+        return callRaw(raw, 'flatten', 'flatten', () => fn(m.positions, m.triangles, o, bridge.fn));
+      } finally {
+        bridge.rethrow();
+      }
+    },
+
+    remesh(mesh, options, call) {
+      const m = toMesh(mesh, 'api');
+      const o = pickOptions(options, remeshKeys, 'api');
+      const sizing = options?.vertexSizing == null ? EMPTY_F64 : toFloat64('vertexSizing', options.vertexSizing, 'api');
+      const features =
+        options?.featureEdges == null ? EMPTY_U32 : toIndices(options.featureEdges, 'api', 'featureEdges');
+      const fn = requireExport(raw, 'remesh');
+      const bridge = progressBridge(call);
+      try {
+        return callRaw(raw, 'remesh', 'api', () => fn(m.positions, m.triangles, sizing, features, o, bridge.fn));
+      } finally {
+        bridge.rethrow();
+      }
     },
 
     statusTable() {

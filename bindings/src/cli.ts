@@ -2,7 +2,7 @@
 // The package CLI (`npx conformesh COMMAND ...`): the native CLI's commands, flags and JSON
 // output (src/cli/), running the WebAssembly module in Node. One entry in `commands` per command;
 // docs/BINDINGS.md shows how to add one.
-import { readFile } from 'node:fs/promises';
+import { readFile, writeFile } from 'node:fs/promises';
 import type { Conformesh } from './api.js';
 import { init } from './index.js';
 import { ConformeshError, StatusCode } from './status.js';
@@ -112,6 +112,37 @@ function numberFlag(args: Args, name: string, fallback: number): number {
   return d;
 }
 
+/** writeFileBytes of the native CLI: same IoError message. */
+async function writeFileBytes(path: string, bytes: Uint8Array | string): Promise<void> {
+  try {
+    await writeFile(path, bytes);
+  } catch (e) {
+    const err = e as NodeJS.ErrnoException;
+    throw new ConformeshError('IoError', 'write', `cannot create '${path}': ${strerror[err.code ?? ''] ?? err.message}`);
+  }
+}
+
+/** printf("%.17g") of the native CLI for finite numbers. */
+function g17(v: number): string {
+  return Number.isFinite(v) ? formatG(v, 17) : String(v);
+}
+
+/** The refined planar mesh as OBJ or OFF text, as cmd_refine2d.cpp writes it (z = 0). */
+function planarMeshText(vertices: Float64Array, triangles: Uint32Array, off: boolean): string {
+  const parts: string[] = [];
+  const nV = vertices.length / 2, nT = triangles.length / 3;
+  if (off) parts.push(`OFF\n${nV} ${nT} 0\n`);
+  for (let i = 0; i < nV; ++i) parts.push(`${off ? '' : 'v '}${g17(vertices[2 * i]!)} ${g17(vertices[2 * i + 1]!)} 0\n`);
+  for (let t = 0; t < nT; ++t) {
+    const a = triangles[3 * t]!, b = triangles[3 * t + 1]!, c = triangles[3 * t + 2]!;
+    parts.push(off ? `3 ${a} ${b} ${c}\n` : `f ${a + 1} ${b + 1} ${c + 1}\n`);
+  }
+  return parts.join('');
+}
+
+/** printf("%.{digits}f") / ("%.{digits}g") helpers for the text reports. */
+const fixed = (v: number, digits: number) => v.toFixed(digits);
+
 const formatNames = ['obj', 'off', 'stl', 'stl-ascii', 'ply', 'ply-ascii', 'ply-be'];
 
 /** --format NAME as the native CLI takes it (a format name or an extension, any case). */
@@ -124,9 +155,207 @@ function formatFlag(args: Args): MeshFormat | 'auto' | undefined {
   return name as MeshFormat;
 }
 
+const refine2dUsage =
+  'refine2d IN.poly [-o OUT.obj|OUT.off] [--min-angle D] [--max-area A | --max-edge L] [--convex-hull] [--holes-by-orientation] [--circumcenters] [--max-insertions N] [--json]';
+const flattenUsage =
+  'flatten IN -o OUT.obj [--boundary circle|free|corners] [--corner-angle DEG] [--no-flips] [--json]';
+const remeshUsage =
+  'remesh IN -o OUT [--min-angle D] [--edge-length L | --edge-length-rel R] [--feature-angle D] [--chord-tol T] [--json] [--no-hausdorff]';
+
 const infoUsage = 'info FILE [--json] [--weld TOL] [--format NAME]';
 
 const commands: Record<string, Command> = {
+  // src/cli/cmd_refine2d.cpp
+  refine2d: {
+    usage: refine2dUsage,
+    summary: 'quality triangulation of a planar straight-line graph (Delaunay refinement)',
+    valueFlags: ['-o', '--min-angle', '--max-area', '--max-edge', '--max-insertions'],
+    switches: ['--json', '--convex-hull', '--holes-by-orientation', '--circumcenters'],
+    async run(args, api) {
+      if (args.positional.length !== 1) throw new ConformeshError('InvalidArgument', 'api', 'refine2d needs exactly one input .poly file');
+      if (args.flags.has('--max-area') && args.flags.has('--max-edge'))
+        throw new ConformeshError('InvalidArgument', 'api', 'give --max-area or --max-edge, not both');
+      const minAngle = numberFlag(args, '--min-angle', 30);
+      const maxArea = numberFlag(args, '--max-area', 0);
+      const maxEdge = numberFlag(args, '--max-edge', 0);
+      const cap = numberFlag(args, '--max-insertions', 1e8);
+      if (!(cap >= 0)) throw new ConformeshError('InvalidArgument', 'api', '--max-insertions must be >= 0');
+      const out = args.flags.get('-o') ?? '';
+      let off = false;
+      if (out !== '') {
+        if (out.endsWith('.off')) off = true;
+        else if (!out.endsWith('.obj')) throw new ConformeshError('InvalidArgument', 'api', '-o must name a .obj or .off file');
+      }
+      const pslg = api.readPoly(await readFileBytes(args.positional[0]!));
+      const r = api.refine2d(pslg, {
+        minAngle,
+        maxArea,
+        maxEdge,
+        maxInsertions: Math.floor(cap),
+        convexHull: args.flags.has('--convex-hull'),
+        holesByOrientation: args.flags.has('--holes-by-orientation'),
+        offcenters: !args.flags.has('--circumcenters'),
+      });
+      if (out !== '') await writeFileBytes(out, planarMeshText(r.vertices, r.triangles, off));
+      const nT = r.triangles.length / 3, nV = r.vertices.length / 2;
+      if (args.flags.has('--json')) {
+        process.stdout.write(
+          `{"triangles":${nT},"vertices":${nV},"minAngle":${jsonNumber(r.minAngle)},"exemptTriangles":${r.exemptTriangles},` +
+            `"insertions":${r.insertions},"segmentSplits":${r.segmentSplits},"rejected":${r.rejected},` +
+            `"seconds":${jsonNumber(r.seconds)},"status":${jsonString(r.status)}}\n`,
+        );
+      } else {
+        process.stdout.write(
+          `${nT} triangles, ${nV} vertices, min angle ${fixed(r.minAngle, 3)} deg (${r.exemptTriangles} exempt), ${fixed(r.seconds, 3)} s\n`,
+        );
+        if (r.status !== 'Ok') process.stderr.write(`conformesh: ${r.message}\n`);
+      }
+      return r.status === 'Ok' ? 0 : 3;
+    },
+  },
+  // src/cli/cmd_flatten.cpp
+  flatten: {
+    usage: flattenUsage,
+    summary: 'conformal flattening (Ricci flow with intrinsic Delaunay flips); writes uv as vt',
+    valueFlags: ['-o', '--boundary', '--corner-angle', '--tolerance', '--max-iterations'],
+    switches: ['--json', '--no-flips'],
+    async run(args, api) {
+      const out = args.flags.get('-o');
+      if (args.positional.length !== 1 || out === undefined)
+        throw new ConformeshError(
+          'InvalidArgument',
+          'api',
+          'usage: conformesh flatten IN -o OUT.obj [--boundary circle|free|corners] [--corner-angle DEG] [--json]',
+        );
+      const path = args.positional[0]!;
+      const boundary = args.flags.get('--boundary') ?? 'circle';
+      if (boundary !== 'circle' && boundary !== 'free' && boundary !== 'corners')
+        throw new ConformeshError('InvalidArgument', 'api', '--boundary must be circle, free or corners');
+      const tolerance = numberFlag(args, '--tolerance', 1e-9);
+      const maxIterations = Math.trunc(numberFlag(args, '--max-iterations', 100));
+      const mesh = api.readMesh(await readFileBytes(path), { fileName: path });
+      const cornerAngle = boundary === 'corners' ? numberFlag(args, '--corner-angle', 30) : 30;
+      if (!(cornerAngle > 0 && cornerAngle < 180))
+        throw new ConformeshError('InvalidArgument', 'api', '--corner-angle must be in (0, 180) degrees');
+      const r = api.flatten(mesh, { boundary, cornerAngle, tolerance, maxIterations, flips: !args.flags.has('--no-flips') });
+      await writeFileBytes(out, api.writeMesh({ positions: mesh.positions, triangles: mesh.triangles, uvs: r.uv }, 'obj'));
+      const R = r.report;
+      if (args.flags.has('--json')) {
+        const fields: [string, string][] = [
+          ['iterations', jsonNumber(R.iterations)],
+          ['maxCurvatureError', jsonNumber(R.maxCurvatureError)],
+          ['flips', jsonNumber(R.flips)],
+          ['euclideanFlips', jsonNumber(R.euclideanFlips)],
+          ['seconds', jsonNumber(R.seconds)],
+          ['invertedTriangles', jsonNumber(R.invertedTriangles)],
+          ['boundaryCrossings', jsonNumber(R.boundaryCrossings)],
+          ['angleDistortionMax', jsonNumber(R.angleDistortionMax)],
+          ['angleDistortionMean', jsonNumber(R.angleDistortionMean)],
+          ['areaDistortionRange', jsonNumber(R.areaDistortionRange)],
+          ['gaussBonnetError', jsonNumber(R.gaussBonnetError)],
+          ['boundaryLoops', jsonNumber(R.boundaryLoops)],
+          ['corners', jsonNumber(R.corners)],
+          ['residuals', `[${Array.from(R.residuals, jsonNumber).join(',')}]`],
+        ];
+        process.stdout.write(`{${fields.map(([k, v]) => `${jsonString(k)}:${v}`).join(',')}}\n`);
+      } else {
+        process.stdout.write(
+          `flattened ${mesh.positions.length / 3} vertices, ${mesh.triangles.length / 3} triangles: ${R.iterations} Newton iterations, ` +
+            `error ${formatG(R.maxCurvatureError, 3)}, ${R.flips} flips, ${fixed(R.seconds, 3)} s -> ${out}\n`,
+        );
+      }
+      return 0;
+    },
+  },
+  // src/cli/cmd_remesh.cpp
+  remesh: {
+    usage: remeshUsage,
+    summary: 'remesh a surface: conformal flattening per patch, planar Delaunay refinement, lift',
+    valueFlags: ['-o', '--min-angle', '--edge-length', '--edge-length-rel', '--feature-angle', '--chord-tol'],
+    switches: ['--json', '--no-hausdorff'],
+    async run(args, api) {
+      if (args.positional.length !== 1) throw new ConformeshError('InvalidArgument', 'api', 'remesh needs exactly one input file');
+      if (args.flags.has('--edge-length') && args.flags.has('--edge-length-rel'))
+        throw new ConformeshError('InvalidArgument', 'api', 'give --edge-length or --edge-length-rel, not both');
+      const options = {
+        minAngle: numberFlag(args, '--min-angle', 30),
+        targetEdgeLength: numberFlag(args, '--edge-length', 0),
+        targetEdgeLengthRel: numberFlag(args, '--edge-length-rel', 0.01),
+        featureAngle: numberFlag(args, '--feature-angle', 40),
+        chordTolerance: numberFlag(args, '--chord-tol', -1),
+        computeHausdorff: !args.flags.has('--no-hausdorff'),
+      };
+      const path = args.positional[0]!;
+      const mesh = api.readMesh(await readFileBytes(path), { fileName: path });
+      const r = api.remesh(mesh, options);
+      const out = args.flags.get('-o') ?? '';
+      if (out !== '') {
+        const slash = Math.max(out.lastIndexOf('/'), out.lastIndexOf('\\'));
+        const dot = out.lastIndexOf('.');
+        const ext = dot > slash ? out.slice(dot + 1).toLowerCase() : '';
+        const format = ({ obj: 'obj', off: 'off', stl: 'stl', ply: 'ply' } as const)[ext as 'obj'];
+        if (!format) throw new ConformeshError('InvalidArgument', 'write', '-o: unknown extension (obj, off, stl, ply)');
+        await writeFileBytes(out, api.writeMesh(r.mesh, format));
+      }
+      const R = r.report;
+      if (args.flags.has('--json')) {
+        const num = (k: string, v: number) => `${jsonString(k)}:${jsonNumber(v)}`;
+        const corners = R.exemptCorners.map(
+          (c) => `{"vertex":${c.vertex},"angle":${jsonNumber(c.angle)},"triangles":[${Array.from(c.triangles).join(',')}]}`,
+        );
+        const t = R.seconds;
+        const fields = [
+          num('triangles', R.triangles),
+          num('vertices', R.vertices),
+          num('minAngle', R.minAngle),
+          num('maxAngle', R.maxAngle),
+          num('meanMinAngle', R.meanMinAngle),
+          num('pctBelow20', R.pctBelow20),
+          num('pctBelow26', R.pctBelow26),
+          num('pctBelow30', R.pctBelow30),
+          num('minAngleOutsideExempt', R.minAngleOutsideExempt),
+          num('trianglesBelowBoundOutsideExempt', R.trianglesBelowBoundOutsideExempt),
+          `"exemptCorners":[${corners.join(',')}]`,
+          num('hausdorffRel', R.hausdorffRel),
+          num('maxDistanceToInputRel', R.maxDistanceToInputRel),
+          num('meanEdgeLength', R.meanEdgeLength),
+          num('targetEdgeLength', R.targetEdgeLength),
+          num('delaunayFraction', R.delaunayFraction),
+          num('featureCurves', R.featureCurves),
+          num('featureCurvesKept', R.featureCurvesKept),
+          num('patches', R.patches),
+          `"flowIterations":[${R.flowIterations.join(',')}]`,
+          num('conformingRounds', R.conformingRounds),
+          num('certificateRounds', R.certificateRounds),
+          `"topologyPreserved":${R.topologyPreserved ? 'true' : 'false'}`,
+          `"seconds":{${(['validate', 'segment', 'flatten', 'curveMesh', 'refine', 'lift', 'stitch', 'report', 'total'] as const)
+            .map((k) => num(k, t[k]))
+            .join(',')}}`,
+        ];
+        process.stdout.write(`{${fields.join(',')}}\n`);
+      } else {
+        const t = R.seconds;
+        const row = (k: string, v: string) => process.stdout.write(`${k.padEnd(28)} ${v}\n`);
+        row('triangles (in -> out)', `${R.inputTriangles} -> ${R.triangles}`);
+        row('vertices', `${R.vertices}`);
+        row('angle min / mean-min / max', `${fixed(R.minAngle, 2)} / ${fixed(R.meanMinAngle, 2)} / ${fixed(R.maxAngle, 2)} deg`);
+        row('min angle outside exempt', `${fixed(R.minAngleOutsideExempt, 2)} deg (${R.trianglesBelowBoundOutsideExempt} triangles below the bound)`);
+        row('below 20 / 26 / 30 deg', `${fixed(R.pctBelow20, 3)} / ${fixed(R.pctBelow26, 3)} / ${fixed(R.pctBelow30, 3)} %`);
+        row('exempt corners', `${R.exemptCorners.length}`);
+        row('Hausdorff / bbox diagonal', `${formatG(R.hausdorffRel, 3)} (max vertex distance ${formatG(R.maxDistanceToInputRel, 2)})`);
+        row('mean edge length', `${formatG(R.meanEdgeLength, 4)} (target ${formatG(R.targetEdgeLength, 4)})`);
+        row('feature curves kept', `${R.featureCurvesKept} / ${R.featureCurves}`);
+        row('patches', `${R.patches} (${R.curves} curves, ${R.curveSamples} samples)`);
+        row('topology preserved', R.topologyPreserved ? 'yes' : 'NO');
+        row(
+          'seconds',
+          `validate ${fixed(t.validate, 3)}, segment ${fixed(t.segment, 3)}, flatten ${fixed(t.flatten, 3)}, curves ${fixed(t.curveMesh, 3)}, ` +
+            `refine ${fixed(t.refine, 3)}, lift ${fixed(t.lift, 3)}, stitch ${fixed(t.stitch, 3)}, report ${fixed(t.report, 3)}, total ${fixed(t.total, 3)}`,
+        );
+      }
+      return 0;
+    },
+  },
   // src/cli/cmd_info.cpp
   info: {
     usage: infoUsage,

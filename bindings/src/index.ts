@@ -8,7 +8,16 @@
 // Failures throw ConformeshError { code, value, stage, message }.
 import { bindApi, type Conformesh } from './api.js';
 import { loadRaw, type InitOptions } from './loader.js';
+import type { ProgressOptions } from './progress.js';
 import type {
+  FlattenOptions,
+  FlattenResult,
+  Pslg,
+  PslgLike,
+  Refine2dOptions,
+  Refine2dResult,
+  RemeshOptions,
+  RemeshResult,
   MeshBytes,
   MeshFormat,
   MeshInfo,
@@ -22,6 +31,7 @@ import type {
 
 export type { Conformesh } from './api.js';
 export type { InitOptions } from './loader.js';
+export type { ProgressOptions } from './progress.js';
 export * from './types.js';
 export {
   ConformeshError,
@@ -69,4 +79,27 @@ export async function meshInfo(mesh: MeshLike, options?: Pick<ValidateOptions, '
 /** Validate and repair a mesh (see ValidateOptions): the repaired mesh and what was done, or a ConformeshError. */
 export async function validateMesh(mesh: MeshLike, options?: ValidateOptions): Promise<ValidateResult> {
   return (await init()).validateMesh(mesh, options);
+}
+
+/**
+ * Quality triangulation of a planar straight-line graph (constrained Delaunay refinement; see
+ * Refine2dOptions). `call`: { onProgress, signal } (runs on this thread; use createRemesher for workers).
+ */
+export async function refine2d(pslg: PslgLike, options?: Refine2dOptions, call?: ProgressOptions): Promise<Refine2dResult> {
+  return (await init()).refine2d(pslg, options, call);
+}
+
+/** Parse a Triangle .poly file into a PSLG. */
+export async function readPoly(bytes: MeshBytes): Promise<Pslg> {
+  return (await init()).readPoly(bytes);
+}
+
+/** Conformal flattening of a disk-like patch: uv per vertex, conformal factor u, intrinsic layout, report. */
+export async function flatten(mesh: MeshLike, options?: FlattenOptions, call?: ProgressOptions): Promise<FlattenResult> {
+  return (await init()).flatten(mesh, options, call);
+}
+
+/** Remesh a surface: the new mesh and its quality report. */
+export async function remesh(mesh: MeshLike, options?: RemeshOptions, call?: ProgressOptions): Promise<RemeshResult> {
+  return (await init()).remesh(mesh, options, call);
 }

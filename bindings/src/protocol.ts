@@ -9,7 +9,16 @@
 import type { ConformeshErrorData, StageName } from './status.js';
 
 /** Methods a worker serves (the names of the Conformesh API functions). */
-export type WorkerMethod = 'readMesh' | 'writeMesh' | 'meshInfo' | 'validateMesh' | 'version';
+export type WorkerMethod =
+  | 'readMesh'
+  | 'writeMesh'
+  | 'meshInfo'
+  | 'validateMesh'
+  | 'refine2d'
+  | 'readPoly'
+  | 'flatten'
+  | 'remesh'
+  | 'version';
 
 export interface InitRequest {
   id: number;

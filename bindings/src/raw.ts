@@ -1,7 +1,7 @@
 // The raw Emscripten module (dist/conformesh.mjs + .wasm) as the facade sees it, and the one
 // place where its results become values or ConformeshErrors. Internal: not part of the public API.
 import { ConformeshError, isErrorCode, isStageName, type StageName } from './status.js';
-import type { MeshInfo, ValidateResult } from './types.js';
+import type { FlattenResult, MeshInfo, Pslg, Refine2dResult, RemeshResult, ValidateResult } from './types.js';
 
 /** What every fallible glue function returns (bindings/binding_util.h, `guarded`). */
 export type RawResult<T> =
@@ -44,6 +44,29 @@ export interface RawModule {
   ): RawResult<Uint8Array>;
   meshInfo?(positions: Float64Array, triangles: Uint32Array, options: object): RawResult<MeshInfo>;
   validateMesh?(positions: Float64Array, triangles: Uint32Array, uvs: Float64Array, options: object): RawResult<ValidateResult>;
+  refine2d?(
+    points: Float64Array,
+    segments: Uint32Array,
+    segmentMarkers: Int32Array,
+    holes: Float64Array,
+    options: object,
+    progress: ((stage: number, fraction: number) => boolean) | undefined,
+  ): RawResult<Refine2dResult>;
+  readPoly?(bytes: Uint8Array): RawResult<Pslg>;
+  flatten?(
+    positions: Float64Array,
+    triangles: Uint32Array,
+    options: object,
+    progress: ((stage: number, fraction: number) => boolean) | undefined,
+  ): RawResult<FlattenResult>;
+  remesh?(
+    positions: Float64Array,
+    triangles: Uint32Array,
+    vertexSizing: Float64Array,
+    featureEdges: Uint32Array,
+    options: object,
+    progress: ((stage: number, fraction: number) => boolean) | undefined,
+  ): RawResult<RemeshResult>;
   stackSave(): number;
   stackRestore(sp: number): void;
   HEAP8: Int8Array;

@@ -5,6 +5,14 @@ import type { CallRequest, WorkerMethod, WorkerRequest, WorkerResponse } from '.
 import { transferablesOf } from './protocol.js';
 import { ConformeshError, invalidArgument, type StageName } from './status.js';
 import type {
+  FlattenOptions,
+  FlattenResult,
+  Pslg,
+  PslgLike,
+  Refine2dOptions,
+  Refine2dResult,
+  RemeshOptions,
+  RemeshResult,
   MeshBytes,
   MeshFormat,
   MeshInfo,
@@ -15,7 +23,7 @@ import type {
   ValidateResult,
   WriteMeshOptions,
 } from './types.js';
-import { toBytes, toMesh } from './api.js';
+import { toBytes, toMesh, toPslg } from './api.js';
 
 /** A progress report: stage and fraction in [0, 1], monotone within a call, ending at 1. */
 export interface ProgressEvent {
@@ -68,6 +76,11 @@ export interface Remesher {
   writeMesh(mesh: MeshLike, format: MeshFormat, options?: WriteMeshOptions, call?: CallOptions): Promise<Uint8Array>;
   meshInfo(mesh: MeshLike, options?: Pick<ValidateOptions, 'maxVertices' | 'maxTriangles'>, call?: CallOptions): Promise<MeshInfo>;
   validateMesh(mesh: MeshLike, options?: ValidateOptions, call?: CallOptions): Promise<ValidateResult>;
+  /** refine2d in a worker (progress and cancel through `call`). */
+  refine2d(pslg: PslgLike, options?: Refine2dOptions, call?: CallOptions): Promise<Refine2dResult>;
+  readPoly(bytes: MeshBytes, call?: CallOptions): Promise<Pslg>;
+  flatten(mesh: MeshLike, options?: FlattenOptions, call?: CallOptions): Promise<FlattenResult>;
+  remesh(mesh: MeshLike, options?: RemeshOptions, call?: CallOptions): Promise<RemeshResult>;
   version(): Promise<string>;
   /** Stop every worker; pending calls reject with 'Cancelled'. */
   terminate(): void;
@@ -99,6 +112,13 @@ interface Job {
 interface Slot {
   worker: Promise<WorkerLike> | undefined;
   job: Job | undefined;
+}
+
+/** Options as a structured-clone-safe plain object (own enumerable fields only). */
+function plainOptions<T extends object>(options: T | undefined): T | undefined {
+  if (options === undefined || options === null) return undefined;
+  if (typeof options !== 'object') throw invalidArgument('options must be an object');
+  return { ...options };
 }
 
 function cancelled(): ConformeshError {
@@ -252,6 +272,13 @@ export function createRemesher(options: RemesherOptions = {}): Remesher {
       (await submit('meshInfo', [toMesh(mesh, 'validate'), options], call)) as MeshInfo,
     validateMesh: async (mesh, options, call) =>
       (await submit('validateMesh', [toMesh(mesh, 'validate'), options], call)) as ValidateResult,
+    refine2d: async (pslg, options, call) =>
+      (await submit('refine2d', [toPslg(pslg), plainOptions(options)], call)) as Refine2dResult,
+    readPoly: async (bytes, call) => (await submit('readPoly', [toBytes(bytes)], call)) as Pslg,
+    flatten: async (mesh, options, call) =>
+      (await submit('flatten', [toMesh(mesh, 'flatten'), plainOptions(options)], call)) as FlattenResult,
+    remesh: async (mesh, options, call) =>
+      (await submit('remesh', [toMesh(mesh, 'api'), plainOptions(options)], call)) as RemeshResult,
     version: async () => (await submit('version', [])) as string,
     terminate: () => {
       if (terminated) return;

@@ -126,3 +126,234 @@ export interface StatusRow {
   fatal: boolean;
   meaning: string;
 }
+
+/**
+ * A planar straight-line graph (Triangle's .poly contents).
+ *   points          2·n numbers, x y per vertex (finite)
+ *   segments        2·m vertex indices (0-based); optional (none: the convex hull is meshed)
+ *   holes           2·h numbers: hole seed points (the region around a seed, bounded by segments, is removed)
+ *   segmentMarkers  optional, one integer per segment, carried to the output edges
+ * Exact duplicate points are merged; crossing or overlapping segments fail with InvalidPslg.
+ */
+export interface Pslg {
+  points: Float64Array;
+  segments?: Uint32Array;
+  holes?: Float64Array;
+  segmentMarkers?: Int32Array;
+}
+
+/** What refine2d accepts as a PSLG: other typed arrays or plain number arrays are copied. */
+export interface PslgLike {
+  points: ArrayLike<number>;
+  segments?: ArrayLike<number> | undefined;
+  holes?: ArrayLike<number> | undefined;
+  segmentMarkers?: ArrayLike<number> | undefined;
+}
+
+/** Options of refine2d (sizes in the units of the input coordinates). */
+export interface Refine2dOptions {
+  /** Angle bound θ in degrees, [0, 34]; default 30. Every triangle that is not exempt gets min angle ≥ θ. */
+  minAngle?: number;
+  /** Largest triangle area (Triangle's -a); 0 (default): none. Not together with maxEdge. */
+  maxArea?: number;
+  /** Largest edge length; 0 (default): none. Not together with maxArea. */
+  maxEdge?: number;
+  /** Cap on Steiner vertices; reaching it returns status 'IterationLimit' (the mesh is valid). */
+  maxInsertions?: number;
+  /** Constrain the convex hull (Triangle's -c): the domain is the hull minus holes. Default false. */
+  convexHull?: boolean;
+  /** Domain by segment orientation: CCW loops bound the domain, CW loops inside them are holes. Default false. */
+  holesByOrientation?: boolean;
+  /** Off-centers (Üngör) instead of circumcenters; default true (fewer Steiner points). */
+  offcenters?: boolean;
+  /** Encroachment by diametral lenses instead of circles; default false. */
+  diametralLens?: boolean;
+}
+
+/**
+ * The refined triangulation.
+ *   vertices       2·nV: the input points first (same order, unchanged), then Steiner vertices
+ *   triangles      3·nT vertex indices, counter-clockwise
+ *   edges          2·nE constrained edges (subsegments of input segments, hull edges with convexHull)
+ *   edgeSegment    nE: input segment of each constrained edge (-1: a hull edge)
+ *   edgeMarker     nE: that segment's marker (0 without markers)
+ *   vertexSegment  nV: an input segment the vertex lies on, or -1
+ *   vertexParam    nV: t with p = a + t·(b − a) on that segment (0 when vertexSegment is -1)
+ */
+export interface Refine2dResult {
+  vertices: Float64Array;
+  triangles: Uint32Array;
+  edges: Uint32Array;
+  edgeSegment: Int32Array;
+  edgeMarker: Int32Array;
+  vertexSegment: Int32Array;
+  vertexParam: Float64Array;
+  /** Smallest angle (degrees) over the triangles that are not exempt. */
+  minAngle: number;
+  /** Triangles below θ whose small angle is forced by the input (small input angles). */
+  exemptTriangles: number;
+  insertions: number;
+  segmentSplits: number;
+  rejected: number;
+  seconds: number;
+  /** 'Ok', or 'IterationLimit' when maxInsertions stopped the refinement. */
+  status: StatusCodeName;
+  message: string;
+}
+
+/** Options of flatten. */
+export interface FlattenOptions {
+  /**
+   * 'circle' (default): a round disk, inner loops round holes. 'free': u = 0 on the outer loop.
+   * 'corners': a straight-edged polygon keeping the angles of the outer loop's corners.
+   */
+  boundary?: 'circle' | 'free' | 'corners';
+  /** 'corners': boundary vertices whose 3D angle differs from 180° by more than this (degrees) are corners; default 30. */
+  cornerAngle?: number;
+  /** Intrinsic Delaunay flips during the flow; default true. */
+  flips?: boolean;
+  /** Stop at max |K − K̄| ≤ tolerance (radians); default 1e-9. */
+  tolerance?: number;
+  /** Newton iteration cap (IterationLimit); default 100. */
+  maxIterations?: number;
+  /** 'circle': the Möbius-balanced solution; default true. */
+  balanceMobius?: boolean;
+  /** Fail with NumericalFailure when the layout is not valid (default true); false: report the counts. */
+  requireValidLayout?: boolean;
+}
+
+/** The flattening's convergence and distortion report. */
+export interface FlattenReport {
+  iterations: number;
+  /** Final max |K − K̄| (radians). */
+  maxCurvatureError: number;
+  /** max |K − K̄| before each Newton step, and at the end. */
+  residuals: Float64Array;
+  flips: number;
+  euclideanFlips: number;
+  seconds: number;
+  secondsFlow: number;
+  secondsLayout: number;
+  secondsOverlay: number;
+  /** |Σ K − 2π χ| of the target curvatures. */
+  gaussBonnetError: number;
+  invertedTriangles: number;
+  boundaryCrossings: number;
+  layoutLengthError: number;
+  angleDistortionMean: number;
+  angleDistortionMax: number;
+  inputTrianglesInvertedInUv: number;
+  areaDistortionMin: number;
+  areaDistortionMax: number;
+  areaDistortionRange: number;
+  overlayCrossings: number;
+  boundaryLoops: number;
+  /** Corners used ('corners' boundary). */
+  corners: number;
+}
+
+export interface FlattenResult {
+  /** 2 per input vertex: the planar position of the vertex. */
+  uv: Float64Array;
+  /** Per input vertex: the log conformal scale factor (lengths scale by e^{(u_i+u_j)/2}). */
+  u: Float64Array;
+  /** The final intrinsic triangulation laid out in the plane (z = 0), for display. */
+  layout: Mesh;
+  /** Boundary loops (vertex indices), outer first, domain on the left. */
+  boundaryLoops: Uint32Array[];
+  report: FlattenReport;
+}
+
+/** Options of remesh (lengths absolute, angles in degrees). */
+export interface RemeshOptions {
+  /** Angle bound for every output triangle (3D), except at exempt corners; [0, 34], default 30. */
+  minAngle?: number;
+  /** Target edge length (absolute); 0 (default): targetEdgeLengthRel × bounding-box diagonal. */
+  targetEdgeLength?: number;
+  /** Default 0.01. */
+  targetEdgeLengthRel?: number;
+  /** Chord deviation bound (absolute when ≥ 0; < 0, the default: chordToleranceRel × diagonal; 0: no curvature sizing). */
+  chordTolerance?: number;
+  /** Default 1e-3. */
+  chordToleranceRel?: number;
+  /** Neighbouring edge length ratio bound (> 1); default 1.5. */
+  gradation?: number;
+  /** Edge length clamps (absolute; < 0: target/10 and target). */
+  minEdgeLength?: number;
+  maxEdgeLength?: number;
+  /** Dihedral angle above which edges are features; default 40. */
+  featureAngle?: number;
+  /** Turning angle of a feature curve that makes a corner; default 50. */
+  cornerTurn?: number;
+  /** A patch whose scale factor ratio exceeds this is split; default 50. */
+  maxScaleRatio?: number;
+  /** Rounds of the 3D angle certificate; default 3. */
+  maxCertificateRounds?: number;
+  /** Sampled two-sided Hausdorff distance in the report; default true. */
+  computeHausdorff?: boolean;
+  hausdorffSamples?: number;
+  /** Per-input-vertex target edge length (absolute), one per input vertex. */
+  vertexSizing?: ArrayLike<number>;
+  /** User feature edges: 2 input vertex indices per edge. */
+  featureEdges?: ArrayLike<number>;
+}
+
+/** An input corner whose angle is below the bound: the output triangles touching it are exempt. */
+export interface ExemptCorner {
+  vertex: number;
+  outputVertex: number;
+  angle: number;
+  triangles: Uint32Array;
+}
+
+/** The remesh quality report (what `conformesh remesh --json` prints, and more). */
+export interface RemeshReport {
+  inputTriangles: number;
+  inputVertices: number;
+  triangles: number;
+  vertices: number;
+  minAngle: number;
+  maxAngle: number;
+  meanMinAngle: number;
+  pctBelow20: number;
+  pctBelow26: number;
+  pctBelow30: number;
+  minAngleOutsideExempt: number;
+  trianglesBelowBoundOutsideExempt: number;
+  exemptCorners: ExemptCorner[];
+  /** Two-sided, relative to the input bounding-box diagonal (-1: not computed). */
+  hausdorffRel: number;
+  maxDistanceToInputRel: number;
+  meanEdgeLength: number;
+  targetEdgeLength: number;
+  delaunayFraction: number;
+  featureCurves: number;
+  featureCurvesKept: number;
+  sharpEdges: number;
+  cutEdges: number;
+  patches: number;
+  curves: number;
+  curveSamples: number;
+  flowIterations: number[];
+  patchSplitsForScale: number;
+  conformingRounds: number;
+  certificateRounds: number;
+  topologyPreserved: boolean;
+  seconds: {
+    validate: number;
+    segment: number;
+    flatten: number;
+    curveMesh: number;
+    refine: number;
+    lift: number;
+    stitch: number;
+    report: number;
+    total: number;
+  };
+  warnings: string[];
+}
+
+export interface RemeshResult {
+  mesh: Mesh;
+  report: RemeshReport;
+}

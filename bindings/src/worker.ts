@@ -35,6 +35,32 @@ const methods: Record<WorkerMethod, MethodImpl> = {
     progress('validate', 1);
     return r;
   },
+  refine2d: (api, [pslg, options], progress) => {
+    const r = api.refine2d(pslg as never, options as never, { onProgress: (e) => progress(e.stage, e.fraction) });
+    progress('refine', 1);
+    return r;
+  },
+  readPoly: (api, [bytes], progress) => {
+    const r = api.readPoly(bytes as Uint8Array);
+    progress('read', 1);
+    return r;
+  },
+  flatten: (api, [mesh, options], progress) => {
+    const r = api.flatten(mesh as never, options as never, { onProgress: (e) => progress(e.stage, e.fraction) });
+    progress('flatten', 1);
+    return r;
+  },
+  remesh: (api, [mesh, options], progress) => {
+    let stage: StageName = 'api';
+    const r = api.remesh(mesh as never, options as never, {
+      onProgress: (e) => {
+        stage = e.stage;
+        progress(e.stage, e.fraction);
+      },
+    });
+    progress(stage, 1);
+    return r;
+  },
   version: (api) => api.version,
 };
 

@@ -1,7 +1,7 @@
 // The package CLI (dist/cli.js, the `conformesh` bin) running the WASM module in Node: output,
 // exit codes and JSON shapes; and, when the native CLI has the same command, identical output.
 import { execFileSync, spawnSync } from 'node:child_process';
-import { existsSync } from 'node:fs';
+import { existsSync, readFileSync } from 'node:fs';
 import { join } from 'node:path';
 import { fileURLToPath } from 'node:url';
 import { describe, expect, it } from 'vitest';
@@ -77,5 +77,83 @@ describe('package CLI', () => {
         status: nat.status,
       });
     }
+  });
+});
+
+// refine2d / flatten / remesh: same JSON keys and exit codes as the native CLI (numbers that
+// depend on timing differ; deterministic counts must agree).
+describe('package CLI: refine2d, flatten, remesh', () => {
+  const tmp = fileURLToPath(new URL('../../build/', import.meta.url));
+  const poly = data('pslg/square_holes.poly');
+
+  it('refine2d --json: the native keys, the mesh file written, errors as JSON', () => {
+    const out = join(tmp, 'cli-refine2d.off');
+    const r = run(['refine2d', poly, '--min-angle', '32', '--max-area', '0.05', '-o', out, '--json']);
+    expect(r.status).toBe(0);
+    const json = JSON.parse(r.stdout);
+    expect(Object.keys(json)).toEqual([
+      'triangles', 'vertices', 'minAngle', 'exemptTriangles', 'insertions', 'segmentSplits', 'rejected', 'seconds', 'status',
+    ]);
+    expect(json.minAngle).toBeGreaterThanOrEqual(32);
+    expect(json.status).toBe('Ok');
+    expect(existsSync(out)).toBe(true);
+    const cap = run(['refine2d', poly, '--max-area', '1e-6', '--max-insertions', '10', '--json']);
+    expect(cap.status).toBe(3);
+    expect(JSON.parse(cap.stdout).status).toBe('IterationLimit');
+    const bad = run(['refine2d', poly, '--max-area', '1', '--max-edge', '1', '--json']);
+    expect(bad.status).toBe(1);
+    expect(JSON.parse(bad.stdout).error).toMatchObject({ name: 'InvalidArgument' });
+  });
+
+  // Same bytes except timing, and except the last digits of minAngle (libm's atan2 differs
+  // between the WASM and native builds): counts, status, exit code and errors are identical.
+  it.skipIf(!nativeHas('refine2d'))('refine2d prints what the native CLI prints (seconds aside)', () => {
+    const dir = join(tmp, 'cli-cmp');
+    const cases = [
+      ['refine2d', poly, '--min-angle', '30', '--json'],
+      ['refine2d', poly, '--max-edge', '0.5', '--circumcenters', '--json'],
+      ['refine2d', poly, '--max-area', '1e-6', '--max-insertions', '10', '--json'],
+      ['refine2d', poly, '--min-angle', '50', '--json'],
+      ['refine2d', 'no-such.poly', '--json'],
+      ['refine2d', poly, '-o', join(dir, 'x.vtk'), '--json'],
+    ];
+    const strip = (s: string) => s.replace(/"seconds":[^,}]*/g, '"seconds":0').replace(/"minAngle":[^,}]*/g, '"minAngle":0');
+    for (const args of cases) {
+      const wasm = run(args);
+      const nat = spawnSync(native, args, { encoding: 'utf8' });
+      expect({ args, out: strip(wasm.stdout), status: wasm.status }).toEqual({ args, out: strip(nat.stdout), status: nat.status });
+      const w = JSON.parse(wasm.stdout), n = JSON.parse(nat.stdout);
+      if ('minAngle' in n) expect(Math.abs(w.minAngle - n.minAngle)).toBeLessThan(1e-9);
+    }
+    // the written meshes are identical
+    const a = join(tmp, 'cli-wasm.obj'), b = join(tmp, 'cli-native.obj');
+    run(['refine2d', poly, '--max-area', '0.1', '-o', a]);
+    spawnSync(native, ['refine2d', poly, '--max-area', '0.1', '-o', b]);
+    expect(readFileSync(a, 'utf8')).toBe(readFileSync(b, 'utf8'));
+  });
+
+  it.skipIf(!nativeHas('flatten'))('flatten --json: the native keys and the same iteration count', () => {
+    const args = ['flatten', data('camelhead.off'), '-o', join(tmp, 'cli-flat.obj'), '--json'];
+    const wasm = run(args);
+    expect(wasm.status).toBe(0);
+    const nat = spawnSync(native, args, { encoding: 'utf8' });
+    const w = JSON.parse(wasm.stdout), n = JSON.parse(nat.stdout);
+    expect(Object.keys(w)).toEqual(Object.keys(n));
+    for (const k of ['iterations', 'boundaryLoops', 'corners', 'invertedTriangles']) expect(w[k]).toBe(n[k]);
+    const err = ['flatten', data('spot.obj'), '-o', join(tmp, 'x.obj'), '--json'];
+    expect(run(err).stdout).toBe(spawnSync(native, err, { encoding: 'utf8' }).stdout);
+  });
+
+  it.skipIf(!nativeHas('remesh'))('remesh --json: the native keys, the same counts', () => {
+    const input = join(root, 'web', 'samples', 'icosphere.obj');
+    const args = ['remesh', input, '--edge-length-rel', '0.1', '--no-hausdorff', '--json'];
+    const wasm = run(args);
+    const nat = spawnSync(native, args, { encoding: 'utf8' });
+    expect(wasm.status).toBe(nat.status);
+    const w = JSON.parse(wasm.stdout), n = JSON.parse(nat.stdout);
+    expect(Object.keys(w)).toEqual(Object.keys(n));
+    if (!('error' in n)) for (const k of ['triangles', 'vertices', 'patches', 'topologyPreserved']) expect(w[k]).toEqual(n[k]);
+    const bad = ['remesh', input, '--edge-length', '1', '--edge-length-rel', '0.1', '--json'];
+    expect(run(bad).stdout).toBe(spawnSync(native, bad, { encoding: 'utf8' }).stdout);
   });
 });

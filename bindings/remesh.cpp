@@ -1,0 +1,139 @@
+// conformesh — embind glue, the remesh pipeline: remesh (src/remesh/remesh.h).
+#include <emscripten/bind.h>
+#include <emscripten/val.h>
+
+#include <string>
+#include <utility>
+#include <vector>
+
+#include "binding_util.h"
+#include "conformesh.h"
+#include "remesh/remesh.h"
+
+using namespace emscripten;
+using namespace conformesh;
+
+namespace {
+
+val reportToJs(const RemeshReport& r) {
+  val o = val::object();
+  o.set("inputTriangles", double(r.inputTriangles));
+  o.set("inputVertices", double(r.inputVertices));
+  o.set("triangles", double(r.triangles));
+  o.set("vertices", double(r.vertices));
+  o.set("minAngle", r.minAngle);
+  o.set("maxAngle", r.maxAngle);
+  o.set("meanMinAngle", r.meanMinAngle);
+  o.set("pctBelow20", r.pctBelow20);
+  o.set("pctBelow26", r.pctBelow26);
+  o.set("pctBelow30", r.pctBelow30);
+  o.set("minAngleOutsideExempt", r.minAngleOutsideExempt);
+  o.set("trianglesBelowBoundOutsideExempt", double(r.trianglesBelowBoundOutsideExempt));
+  val corners = val::array();
+  for (const ExemptCorner& c : r.exemptCorners) {
+    val e = val::object();
+    e.set("vertex", double(c.inputVertex));
+    e.set("outputVertex", double(c.outputVertex));
+    e.set("angle", c.angleDeg);
+    e.set("triangles", bindings::typedArrayCopy(c.triangles));
+    corners.call<void>("push", e);
+  }
+  o.set("exemptCorners", corners);
+  o.set("hausdorffRel", r.hausdorffRel);
+  o.set("maxDistanceToInputRel", r.maxDistanceToInputRel);
+  o.set("meanEdgeLength", r.meanEdgeLength);
+  o.set("targetEdgeLength", r.targetEdgeLength);
+  o.set("delaunayFraction", r.delaunayFraction);
+  o.set("featureCurves", double(r.featureCurves));
+  o.set("featureCurvesKept", double(r.featureCurvesKept));
+  o.set("sharpEdges", double(r.sharpEdges));
+  o.set("cutEdges", double(r.cutEdges));
+  o.set("patches", double(r.patches));
+  o.set("curves", double(r.curves));
+  o.set("curveSamples", double(r.curveSamples));
+  val iters = val::array();
+  for (int k : r.flowIterations) iters.call<void>("push", k);
+  o.set("flowIterations", iters);
+  o.set("patchSplitsForScale", double(r.patchSplitsForScale));
+  o.set("conformingRounds", r.conformingRounds);
+  o.set("certificateRounds", r.certificateRounds);
+  o.set("topologyPreserved", r.topologyPreserved);
+  const StageSeconds& t = r.seconds;
+  val s = val::object();
+  s.set("validate", t.validate);
+  s.set("segment", t.segment);
+  s.set("flatten", t.flatten);
+  s.set("curveMesh", t.curveMesh);
+  s.set("refine", t.refine);
+  s.set("lift", t.lift);
+  s.set("stitch", t.stitch);
+  s.set("report", t.report);
+  s.set("total", t.total);
+  o.set("seconds", s);
+  o.set("warnings", bindings::stringArray(r.warnings));
+  return o;
+}
+
+//! The pipeline reports a fraction per stage (validate, segment, flatten, curve-mesh, refine,
+//! lift, stitch, report, in that order); JS gets one fraction for the whole call: each stage owns
+//! an interval of [0, 1] sized by its typical share of the run time.
+ProgressFn overallProgress(ProgressFn stageProgress) {
+  if (!stageProgress) return {};
+  return [inner = std::move(stageProgress)](Stage s, double f) {
+    double lo = 0, hi = 1;
+    switch (s) {
+      case Stage::Validate: lo = 0.00, hi = 0.02; break;
+      case Stage::Segment: lo = 0.02, hi = 0.10; break;
+      case Stage::Flatten: lo = 0.10, hi = 0.45; break;
+      case Stage::CurveMesh: lo = 0.45, hi = 0.50; break;
+      case Stage::Refine: lo = 0.50, hi = 0.85; break;
+      case Stage::Lift: lo = 0.85, hi = 0.92; break;
+      case Stage::Stitch: lo = 0.92, hi = 0.96; break;
+      case Stage::Report: lo = 0.96, hi = 1.00; break;
+      default: lo = 0, hi = 1; break;
+    }
+    const double t = f >= 0 && f <= 1 ? f : (f > 1 ? 1.0 : 0.0);
+    return inner(s, lo + t * (hi - lo));
+  };
+}
+
+//! remesh(positions, triangles, vertexSizing, featureEdges, options, progress)
+//!   -> {ok, value: {mesh: {positions, triangles}, report}}
+//! A failed RemeshResult (status not Ok) becomes the failure object with its code and stage.
+val remeshJs(val positions, val triangles, val vertexSizing, val featureEdges, val options, val progress) {
+  return bindings::guarded(Stage::Api, [&] {
+    MeshBuffers mesh = bindings::meshFromJs(positions, triangles, val::undefined());
+    RemeshOptions o;
+    const Stage st = Stage::Api;
+    o.minAngleDeg = bindings::numberOption(options, "minAngle", o.minAngleDeg, st, 0, 34);
+    o.targetEdgeLength = bindings::numberOption(options, "targetEdgeLength", o.targetEdgeLength, st, 0);
+    o.targetEdgeLengthRel = bindings::numberOption(options, "targetEdgeLengthRel", o.targetEdgeLengthRel, st, 0);
+    o.chordTolerance = bindings::numberOption(options, "chordTolerance", o.chordTolerance, st);
+    o.chordToleranceRel = bindings::numberOption(options, "chordToleranceRel", o.chordToleranceRel, st, 0);
+    o.gradation = bindings::numberOption(options, "gradation", o.gradation, st, 1);
+    o.minEdgeLength = bindings::numberOption(options, "minEdgeLength", o.minEdgeLength, st);
+    o.maxEdgeLength = bindings::numberOption(options, "maxEdgeLength", o.maxEdgeLength, st);
+    o.featureAngleDeg = bindings::numberOption(options, "featureAngle", o.featureAngleDeg, st, 0, 180);
+    o.cornerTurnDeg = bindings::numberOption(options, "cornerTurn", o.cornerTurnDeg, st, 0, 180);
+    o.maxScaleRatio = bindings::numberOption(options, "maxScaleRatio", o.maxScaleRatio, st, 1);
+    o.maxCertificateRounds =
+        int(bindings::numberOption(options, "maxCertificateRounds", o.maxCertificateRounds, st, 0, 100));
+    o.computeHausdorff = bindings::boolOption(options, "computeHausdorff", o.computeHausdorff, st);
+    o.hausdorffSamples =
+        size_t(bindings::numberOption(options, "hausdorffSamples", double(o.hausdorffSamples), st, 1, 1e8));
+    o.vertexSizing = bindings::vectorFromJs<double>(vertexSizing);
+    const std::vector<uint32_t> fe = bindings::vectorFromJs<uint32_t>(featureEdges);
+    if (fe.size() % 2 != 0) fail(Code::InvalidArgument, st, "featureEdges must hold 2 vertex indices per edge");
+    for (size_t i = 0; i + 1 < fe.size(); i += 2) o.featureEdges.push_back({fe[i], fe[i + 1]});
+    RemeshResult r = remesh(mesh, o, overallProgress(bindings::progressFromJs(progress)));
+    if (!r.status.ok()) throw Error(r.status.code, r.status.stage, r.status.message);
+    val out = val::object();
+    out.set("mesh", bindings::meshToJs(r.mesh));
+    out.set("report", reportToJs(r.report));
+    return out;
+  });
+}
+
+}  // namespace
+
+EMSCRIPTEN_BINDINGS(conformesh_remesh) { function("remesh", &remeshJs); }
