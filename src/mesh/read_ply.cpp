@@ -62,44 +62,28 @@ struct Element {
   size_t headerLine = 0;
 };
 
+// The value of a T stored (host byte order) at b, as double.
+template <class T>
+double loadAs(const uint8_t* b) {
+  T v;
+  std::memcpy(&v, b, sizeof v);
+  return double(v);
+}
+
 // Load a scalar of type t from p (little-endian file unless bigEndian) as double.
 double loadScalar(const uint8_t* p, PType t, bool bigEndian) {
   uint8_t b[8];
   const size_t n = typeSize(t);
   for (size_t i = 0; i < n; ++i) b[i] = bigEndian ? p[n - 1 - i] : p[i];
   switch (t) {
-    case PType::Int8: return double(int8_t(b[0]));
-    case PType::UInt8: return double(b[0]);
-    case PType::Int16: {
-      int16_t v;
-      std::memcpy(&v, b, 2);
-      return double(v);
-    }
-    case PType::UInt16: {
-      uint16_t v;
-      std::memcpy(&v, b, 2);
-      return double(v);
-    }
-    case PType::Int32: {
-      int32_t v;
-      std::memcpy(&v, b, 4);
-      return double(v);
-    }
-    case PType::UInt32: {
-      uint32_t v;
-      std::memcpy(&v, b, 4);
-      return double(v);
-    }
-    case PType::Float32: {
-      float v;
-      std::memcpy(&v, b, 4);
-      return double(v);
-    }
-    case PType::Float64: {
-      double v;
-      std::memcpy(&v, b, 8);
-      return v;
-    }
+    case PType::Int8: return loadAs<int8_t>(b);
+    case PType::UInt8: return loadAs<uint8_t>(b);
+    case PType::Int16: return loadAs<int16_t>(b);
+    case PType::UInt16: return loadAs<uint16_t>(b);
+    case PType::Int32: return loadAs<int32_t>(b);
+    case PType::UInt32: return loadAs<uint32_t>(b);
+    case PType::Float32: return loadAs<float>(b);
+    case PType::Float64: return loadAs<double>(b);
     case PType::Invalid: break;
   }
   return 0.0;
