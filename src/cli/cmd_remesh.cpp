@@ -45,6 +45,9 @@ std::string reportJson(const RemeshReport& r) {
   s += "],";
   num("conformingRounds", r.conformingRounds);
   num("certificateRounds", r.certificateRounds);
+  s += "\"warnings\":[";
+  for (size_t i = 0; i < r.warnings.size(); ++i) s += (i ? "," : "") + jsonString(r.warnings[i]);
+  s += "],";
   s += std::string("\"topologyPreserved\":") + (r.topologyPreserved ? "true" : "false") + ",";
   const auto& t = r.seconds;
   s += "\"seconds\":{\"validate\":" + jsonNumber(t.validate) + ",\"segment\":" + jsonNumber(t.segment) +
@@ -68,6 +71,7 @@ void printTable(const RemeshReport& r) {
   std::printf("%-28s %zu / %zu\n", "feature curves kept", r.featureCurvesKept, r.featureCurves);
   std::printf("%-28s %zu (%zu curves, %zu samples)\n", "patches", r.patches, r.curves, r.curveSamples);
   std::printf("%-28s %s\n", "topology preserved", r.topologyPreserved ? "yes" : "NO");
+  for (const auto& w : r.warnings) std::printf("%-28s %s\n", "warning", w.c_str());
   const auto& t = r.seconds;
   std::printf("%-28s validate %.3f, segment %.3f, flatten %.3f, curves %.3f, refine %.3f, lift %.3f, stitch %.3f, "
               "report %.3f, total %.3f\n",

@@ -26,6 +26,10 @@ namespace {
 namespace F = features;
 using F::kNone;
 constexpr double kPi = 3.14159265358979323846;
+// Rounds of re-refining patches whose boundary got samples from a neighbour's segment splits.
+constexpr int kConformingRounds = 8;
+// Degrees added to the angle bound for the planar refinement (see meshPatch).
+constexpr double kPlanarAngleMargin = 2.0;
 
 double elapsed(std::chrono::steady_clock::time_point& t) {
   auto now = std::chrono::steady_clock::now();
@@ -46,8 +50,6 @@ struct PatchWork {
   std::vector<double> hSub;      // 3D target length per sub vertex
   std::vector<double> scaleSub;  // planar length per 3D length, per sub vertex
   std::vector<Spot> spots;
-  std::vector<std::pair<uint32_t, double>> bcCorners;  // sub vertex, planar target angle
-  std::vector<double> wedgeAngle;                      // 3D angle sum per sub vertex
   // latest meshing
   std::vector<uint32_t> localToGlobal;  // planar vertex -> output vertex (samples first)
   std::vector<F::Vec3> interiorPositions;  // positions of planar vertices that are interior
@@ -75,12 +77,12 @@ class Pipeline {
   void checkCancel(Stage s, double f) {
     if (progress_ && !progress_(s, std::clamp(f, 0.0, 1.0))) fail(Code::Cancelled, s, "cancelled by the progress callback");
   }
-  void ensurePatchCorners();
   void flattenPatches();
   std::vector<std::pair<uint32_t, double>> boundaryCorners(const F::PatchMesh& pm) const;
   void indexSamples();
   std::vector<BoundaryPoint> boundaryPoints(const PatchWork& w) const;
   void meshPatch(uint32_t p);
+  bool liftPoint(const PatchWork& w, double x, double y, PullbackPoint& q) const;
   void patchUp(uint32_t p);
   uint32_t addSplitSample(const PatchWork& w, const std::vector<BoundaryPoint>& bp, uint32_t s, double t);
   double curveKey(uint32_t c, uint32_t sample) const;
@@ -118,117 +120,21 @@ std::vector<double> Pipeline::cornerWedgeAngles(const F::PatchMesh& pm) const {
   return a;
 }
 
-// Corners of the corner-preserving boundary condition: boundary wedges at curve corners whose 3D
-// angle differs from π by more than 10° (or artificial corners), with target angles adjusted so
-// that Σ (π − α) = 2π (Gauss–Bonnet for a flat disk with straight sides). Artificial and cut
-// corners absorb most of the adjustment, feature corners little.
+// Corners for the corner-preserving boundary condition (the fallback when the free boundary
+// overlaps itself): boundary wedges at curve corners whose 3D angle differs from π by more than
+// 10°, each with its own 3D angle as target; the flow spreads the rest of the boundary turning
+// (2π − Σ(π − α)) along the sides by arc length, so the sides bend instead of the corners.
 std::vector<std::pair<uint32_t, double>> Pipeline::boundaryCorners(const F::PatchMesh& pm) const {
   std::vector<double> angle = cornerWedgeAngles(pm);
-  std::vector<uint32_t> ids;
-  std::vector<double> alpha, weight;
   std::vector<uint8_t> onBoundary(pm.vertexInput.size(), 0);
   for (const auto& h : pm.boundaryLoops[0]) onBoundary[pm.mesh.triangles[3 * h.face + h.corner]] = 1;
-  for (uint32_t v = 0; v < pm.vertexInput.size(); ++v) {
-    if (!onBoundary[v]) continue;
-    uint32_t iv = pm.vertexInput[v];
-    uint8_t kind = seg_.vertexCorner[iv];
-    if (kind == 0) continue;
-    if (kind == 1 && std::abs(angle[v] - kPi) < 10.0 * kPi / 180.0) continue;
-    bool cut = false;
-    for (uint32_t k = g_.vertexEdgeStart[iv]; k < g_.vertexEdgeStart[iv + 1]; ++k)
-      cut = cut || seg_.edgeKind[g_.vertexEdgeIds[k]] == F::EdgeKind::Cut;
-    ids.push_back(v);
-    alpha.push_back(angle[v]);
-    weight.push_back(kind == 2 || cut ? 1.0 : 0.15);
-  }
-  if (ids.size() < 3) return {};
-  // distribute the Gauss–Bonnet deficit, keeping every angle in [15°, 345°]
-  const double lo = 15.0 * kPi / 180.0, hi = 2 * kPi - lo;
-  std::vector<double> a = alpha;
-  std::vector<uint8_t> frozen(a.size(), 0);
-  for (int it = 0; it < 20; ++it) {
-    double sum = 0, wsum = 0;
-    for (size_t i = 0; i < a.size(); ++i) {
-      sum += kPi - a[i];
-      if (!frozen[i]) wsum += weight[i];
-    }
-    double d = 2 * kPi - sum;  // increase Σ(π − α) by d: decrease α
-    if (std::abs(d) < 1e-13) break;
-    if (wsum == 0) return {};
-    bool clamped = false;
-    for (size_t i = 0; i < a.size(); ++i) {
-      if (frozen[i]) continue;
-      double na = a[i] - d * weight[i] / wsum;
-      if (na < lo || na > hi) {
-        na = std::clamp(na, lo, hi);
-        frozen[i] = 1;
-        clamped = true;
-      }
-      a[i] = na;
-    }
-    if (!clamped) break;
-  }
-  double sum = 0;
-  for (double x : a) sum += kPi - x;
-  if (std::abs(sum - 2 * kPi) > 1e-9) return {};
   std::vector<std::pair<uint32_t, double>> out;
-  for (size_t i = 0; i < ids.size(); ++i) out.push_back({ids[i], a[i]});
-  return out;
-}
-
-// Give every patch with fewer than 3 usable boundary-condition corners artificial corners
-// (midpoints of the largest gaps by arc length) until it has 4.
-void Pipeline::ensurePatchCorners() {
-  auto mask = seg_.curveMask();
-  bool changed = false;
-  for (const auto& faces : seg_.patches) {
-    F::PatchMesh pm = F::extractPatch(g_, mask, faces);
-    if (boundaryCorners(pm).size() >= 3) continue;
-    std::vector<double> angle = cornerWedgeAngles(pm);
-    const auto& loop = pm.boundaryLoops[0];
-    std::vector<uint32_t> verts;
-    std::vector<double> arc{0.0};
-    for (const auto& h : loop) {
-      uint32_t a = pm.mesh.triangles[3 * h.face + h.corner], b = pm.mesh.triangles[3 * h.face + (h.corner + 1) % 3];
-      verts.push_back(a);
-      arc.push_back(arc.back() + g_.edgeLength(g_.findEdge(pm.vertexInput[a], pm.vertexInput[b])));
-    }
-    std::vector<size_t> cornerPos;
-    for (size_t i = 0; i < verts.size(); ++i) {
-      uint32_t iv = pm.vertexInput[verts[i]];
-      if (seg_.vertexCorner[iv] == 2 ||
-          (seg_.vertexCorner[iv] == 1 && std::abs(angle[verts[i]] - kPi) >= 10.0 * kPi / 180.0))
-        cornerPos.push_back(i);
-    }
-    const double L = arc.back();
-    while (cornerPos.size() < 4 && cornerPos.size() < verts.size()) {
-      double target;
-      if (cornerPos.empty()) target = 0;
-      else {
-        double bestGap = -1;
-        target = 0;
-        for (size_t k = 0; k < cornerPos.size(); ++k) {
-          double s0 = arc[cornerPos[k]];
-          double s1 = k + 1 < cornerPos.size() ? arc[cornerPos[k + 1]] : arc[cornerPos[0]] + L;
-          if (s1 - s0 > bestGap) bestGap = s1 - s0, target = std::fmod(0.5 * (s0 + s1), L);
-        }
-      }
-      size_t best = kNone;
-      for (size_t i = 0; i < verts.size(); ++i) {
-        if (std::find(cornerPos.begin(), cornerPos.end(), i) != cornerPos.end()) continue;
-        double d = std::abs(arc[i] - target);
-        d = std::min(d, L - d);
-        if (best == kNone || d < std::min(std::abs(arc[best] - target), L - std::abs(arc[best] - target))) best = i;
-      }
-      if (best == kNone) break;
-      cornerPos.push_back(best);
-      std::sort(cornerPos.begin(), cornerPos.end());
-      if (seg_.forcedCorner.empty()) seg_.forcedCorner.assign(g_.vertexCount, 0);
-      seg_.forcedCorner[pm.vertexInput[verts[best]]] = 1;
-      changed = true;
-    }
+  for (uint32_t v = 0; v < pm.vertexInput.size(); ++v) {
+    if (!onBoundary[v] || !seg_.vertexCorner[pm.vertexInput[v]]) continue;
+    if (std::abs(angle[v] - kPi) < 10.0 * kPi / 180.0) continue;
+    out.push_back({v, std::clamp(angle[v], 1e-3, 2 * kPi - 1e-3)});
   }
-  if (changed) F::rebuildCurves(g_, seg_);
+  return out;
 }
 
 void Pipeline::flattenPatches() {
@@ -236,7 +142,6 @@ void Pipeline::flattenPatches() {
   for (int round = 0;; ++round) {
     if (round > 64 + int(g_.faceCount))
       fail(Code::IterationLimit, Stage::Flatten, "splitting patches for their scale factor did not settle");
-    ensurePatchCorners();
     auto mask = seg_.curveMask();
     bool split = false;
     for (uint32_t p = 0; p < seg_.patches.size() && !split; ++p) {
@@ -246,37 +151,42 @@ void Pipeline::flattenPatches() {
       auto w = std::make_unique<PatchWork>();
       w->pm = F::extractPatch(g_, mask, faces);
       if (!w->pm.isDisk()) fail(Code::InternalError, Stage::Flatten, "a patch is not a disk after cutting");
-      FlattenOptions fo;
-      fo.corners = boundaryCorners(w->pm);
-      w->bcCorners = fo.corners;
-      w->wedgeAngle = cornerWedgeAngles(w->pm);
-      fo.boundary = fo.corners.empty() ? BoundaryCondition::Circle : BoundaryCondition::Corners;
-      if (fo.corners.empty()) rep_.warnings.push_back("patch with a round (circle) boundary condition: no usable corners");
-      try {
-        w->flat = flatten(w->pm.mesh, fo);
-      } catch (const Error& e) {
-        // a layout that overlaps itself (or a flow that stalls): split the patch and retry
-        if (e.code() == Code::Cancelled || faces.size() < 16 || !F::splitPatch(g_, seg_, p)) throw;
+      // Boundary conditions, least distorting first. Free (u = 0 on the boundary): isometric
+      // on developable patches, so planar angles are 3D angles and corners keep theirs; its
+      // layout can overlap itself on strongly curved patches. Then corner-preserving (corners
+      // keep their 3D angle, the sides bend), then the round disk (always embedded).
+      const BoundaryCondition order[] = {BoundaryCondition::Free, BoundaryCondition::Corners, BoundaryCondition::Circle};
+      bool flattened = false;
+      std::string lastError;
+      for (BoundaryCondition bc : order) {
+        FlattenOptions fo;
+        fo.boundary = bc;
+        if (bc == BoundaryCondition::Corners) {
+          fo.corners = boundaryCorners(w->pm);
+          if (fo.corners.empty()) continue;
+        }
+        try {
+          w->flat = flatten(w->pm.mesh, fo);
+          flattened = true;
+          if (bc != BoundaryCondition::Free)
+            rep_.warnings.push_back(std::string("patch flattened with the ") +
+                                    (bc == BoundaryCondition::Corners ? "corner-preserving" : "round (circle)") +
+                                    " boundary condition after: " + lastError);
+          break;
+        } catch (const Error& e) {
+          if (e.code() == Code::Cancelled) throw;
+          lastError = e.what();
+        }
+      }
+      if (!flattened) {
+        // every boundary condition failed (a layout that overlaps itself or a flow that stalls):
+        // split the patch and retry
+        if (faces.size() < 16 || !F::splitPatch(g_, seg_, p))
+          fail(Code::NumericalFailure, Stage::Flatten, "patch " + std::to_string(p) + " could not be flattened: " + lastError);
         ++scaleSplits_;
-        rep_.warnings.push_back(std::string("patch split after a flattening failure: ") + e.what());
+        rep_.warnings.push_back("patch split after a flattening failure: " + lastError);
         split = true;
         break;
-      }
-      if (std::getenv("CONFORMESH_DEBUG3")) {
-        const auto& loop = w->pm.boundaryLoops[0];
-        const auto& uv = w->flat.uv;
-        double worst = 0;
-        size_t n = loop.size();
-        std::vector<uint8_t> isC(w->pm.vertexInput.size(), 0);
-        for (auto& c : fo.corners) isC[c.first] = 1;
-        for (size_t k = 0; k < n; ++k) {
-          auto vh = [&](size_t kk) { const auto& h = loop[kk % n]; return w->pm.mesh.triangles[3 * h.face + h.corner]; };
-          uint32_t a = vh(k + n - 1), b = vh(k), c = vh(k + 1);
-          if (isC[b]) continue;
-          double ax = uv[2 * b] - uv[2 * a], ay = uv[2 * b + 1] - uv[2 * a + 1], bx = uv[2 * c] - uv[2 * b], by = uv[2 * c + 1] - uv[2 * b + 1];
-          worst = std::max(worst, std::abs(std::atan2(ax * by - ay * bx, ax * bx + ay * by)));
-        }
-        std::fprintf(stderr, "patch %u: %zu corners, max boundary turning at non-corners %.3g rad, iterations %d, err %.3g\n", p, fo.corners.size(), worst, w->flat.report.iterations, w->flat.report.maxCurvatureError);
       }
       // planar/3D scale per sub vertex from the areas of the input faces around it
       const size_t nv = w->pm.vertexInput.size();
@@ -424,6 +334,11 @@ uint32_t Pipeline::addSplitSample(const PatchWork& w, const std::vector<Boundary
     smp.t = smp.t <= 0.0 ? 0.0 : 1.0;
     smp.vertex = v;
   }
+  // a seam (a cut with the patch on both sides) is split at the same place from both sides:
+  // one sample for both
+  if (smp.vertex == kNone)
+    for (uint32_t o : edgeSamples_[e])
+      if (std::abs(cm_.samples[o].t - smp.t) < 1e-9) return o;
   smp.position = g_.positions[g_.edgeVerts[e][0]] * (1.0 - smp.t) + g_.positions[g_.edgeVerts[e][1]] * smp.t;
   uint32_t id = uint32_t(cm_.samples.size());
   cm_.samples.push_back(smp);
@@ -447,6 +362,26 @@ uint32_t Pipeline::addSplitSample(const PatchWork& w, const std::vector<Boundary
   return id;
 }
 
+// Lift a planar point onto the input surface. The PSLG's boundary segments are chords of the
+// flattened boundary (between curve samples), so a refinement vertex near a concave stretch of
+// boundary can lie just outside the flattened patch: it is lifted from the nearest point of the
+// flattened boundary polyline instead (on the input's boundary curve, within the chord's sagitta).
+bool Pipeline::liftPoint(const PatchWork& w, double x, double y, PullbackPoint& q) const {
+  const Pullback& pb = w.flat.pullback;
+  if (pb.locate(x, y, q, 1e-9)) return true;
+  const auto& loop = w.pm.boundaryLoops[0];
+  const auto& uv = w.flat.uv;
+  double best = INFINITY, bx = x, by = y;
+  for (const auto& h : loop) {
+    uint32_t a = w.pm.mesh.triangles[3 * h.face + h.corner], b = w.pm.mesh.triangles[3 * h.face + (h.corner + 1) % 3];
+    double ex = uv[2 * b] - uv[2 * a], ey = uv[2 * b + 1] - uv[2 * a + 1], l2 = ex * ex + ey * ey;
+    double t = l2 > 0 ? std::clamp(((x - uv[2 * a]) * ex + (y - uv[2 * a + 1]) * ey) / l2, 0.0, 1.0) : 0.0;
+    double px = uv[2 * a] + t * ex, py = uv[2 * a + 1] + t * ey, d = std::hypot(px - x, py - y);
+    if (d < best) best = d, bx = px, by = py;
+  }
+  return std::isfinite(best) && pb.locate(bx, by, q, 1e-6);
+}
+
 void Pipeline::meshPatch(uint32_t p) {
   PatchWork& w = *work_[p];
   w.builtAt = ++stamp_;
@@ -454,37 +389,26 @@ void Pipeline::meshPatch(uint32_t p) {
   w.needsMesh = false;
   std::vector<BoundaryPoint> bp = boundaryPoints(w);
   if (bp.size() < 3) fail(Code::InternalError, Stage::Refine, "a patch boundary has fewer than 3 samples");
+  if (std::getenv("CONFORMESH_DEBUG6"))
+    for (size_t i = 0; i < bp.size(); ++i) {
+      const auto& a = bp[i];
+      const auto& b = bp[(i + 1) % bp.size()];
+      if (a.x == b.x && a.y == b.y) {
+        const auto& sa = cm_.samples[a.sample];
+        const auto& sb = cm_.samples[b.sample];
+        std::fprintf(stderr, "patch %u coincident bp %zu: samples %u (v %u e %u t %.17g) loopPos %u param %g / %u (v %u e %u t %.17g) loopPos %u param %g, n=%zu\n", p, i, a.sample, sa.vertex, sa.edge, sa.t, a.loopPos, a.param, b.sample, sb.vertex, sb.edge, sb.t, b.loopPos, b.param, bp.size());
+      }
+    }
   planar::Pslg pslg;
   for (const auto& b : bp) pslg.points.insert(pslg.points.end(), {b.x, b.y});
   for (uint32_t i = 0; i < bp.size(); ++i) pslg.segments.insert(pslg.segments.end(), {i, uint32_t((i + 1) % bp.size())});
-  // At a boundary-condition corner whose planar angle differs much from its 3D angle, a single
-  // planar triangle there would carry the whole distortion: put a point on the bisector so the
-  // corner fan has at least two triangles.
-  {
-    std::map<uint32_t, double> target(w.bcCorners.begin(), w.bcCorners.end());
-    const auto& loop = w.pm.boundaryLoops[0];
-    const size_t n = bp.size();
-    for (size_t i = 0; i < n; ++i) {
-      if (bp[i].param != 0.0) continue;
-      const auto& h = loop[bp[i].loopPos];
-      uint32_t sv = w.pm.mesh.triangles[3 * h.face + h.corner];
-      auto it = target.find(sv);
-      if (it == target.end() || std::abs(it->second - w.wedgeAngle[sv]) < 15.0 * kPi / 180.0) continue;
-      if (seg_.vertexCorner[w.pm.vertexInput[sv]] != 2 || it->second > w.wedgeAngle[sv]) continue;
-      const BoundaryPoint& Q = bp[(i + n - 1) % n];
-      const BoundaryPoint& R = bp[(i + 1) % n];
-      double rx = R.x - bp[i].x, ry = R.y - bp[i].y, qx = Q.x - bp[i].x, qy = Q.y - bp[i].y;
-      double lr = std::hypot(rx, ry), lq = std::hypot(qx, qy);
-      if (lr == 0 || lq == 0) continue;
-      double theta = std::atan2(rx * qy - ry * qx, rx * qx + ry * qy);
-      if (theta <= 0) theta += 2 * kPi;
-      double c = std::cos(0.5 * theta), sn = std::sin(0.5 * theta);
-      double d = 0.5 * std::min(lr, lq);
-      pslg.points.insert(pslg.points.end(), {bp[i].x + d * (c * rx - sn * ry) / lr, bp[i].y + d * (sn * rx + c * ry) / lr});
-    }
-  }
   planar::RefineOptions ro;
-  ro.minAngleDeg = std::min(opt_.minAngleDeg, 34.0);
+  // Diametral lenses: far fewer segment splits, so fewer samples a neighbour must take up and
+  // fewer rounds. The planar bound has a margin over the 3D one for the small angle distortion
+  // of the lift (the map is conformal only in the discrete sense; measured: ≤ ~1.5° on the
+  // models in ../shared/data with the free boundary).
+  ro.diametralLens = true;
+  ro.minAngleDeg = std::min(opt_.minAngleDeg + kPlanarAngleMargin, 34.0);
   // Longest-edge bound of the refinement vs the mean edge length it gives: calibrated so the
   // mean output edge length in flat regions is the target.
   const double kSizeFactor = 1.3;
@@ -530,24 +454,16 @@ void Pipeline::meshPatch(uint32_t p) {
       continue;
     }
     if (onBoundary[v]) {
-      // a Steiner vertex on a boundary segment: its segment and parameter by projection (robust
-      // whatever direction the refinement stores the segment in)
-      double best = INFINITY, bt = 0;
-      uint32_t bs = 0;
-      for (uint32_t sgm = 0; sgm < bp.size(); ++sgm) {
-        const auto& a = bp[sgm];
-        const auto& b = bp[(sgm + 1) % bp.size()];
-        double ex = b.x - a.x, ey = b.y - a.y, l2 = ex * ex + ey * ey;
-        if (l2 == 0) continue;
-        double t = std::clamp(((pmsh.points[2 * v] - a.x) * ex + (pmsh.points[2 * v + 1] - a.y) * ey) / l2, 0.0, 1.0);
-        double d = std::hypot(a.x + t * ex - pmsh.points[2 * v], a.y + t * ey - pmsh.points[2 * v + 1]);
-        if (d < best) best = d, bs = sgm, bt = t;
-      }
+      // a Steiner vertex on a boundary segment (segment i joins boundary points i and i + 1)
+      const int32_t sg = pmsh.vertexSegment[v];
+      if (sg < 0) fail(Code::InternalError, Stage::Refine, "a boundary vertex of the refinement lies on no segment");
+      const uint32_t bs = uint32_t(sg);
+      const double bt = pmsh.vertexParam[v];
       w.localToGlobal[v] = addSplitSample(w, bp, bs, bt);
       continue;
     }
     PullbackPoint q;
-    if (!pb.locate(pmsh.points[2 * v], pmsh.points[2 * v + 1], q, 1e-6))
+    if (!liftPoint(w, pmsh.points[2 * v], pmsh.points[2 * v + 1], q))
       fail(Code::NumericalFailure, Stage::Lift, "a refinement vertex lies outside the flattened patch");
     w.interiorPositions[v] = {q.position[0], q.position[1], q.position[2]};
   }
@@ -766,20 +682,48 @@ RemeshResult Pipeline::run(const MeshBuffers& input) {
   size_t bestBad = SIZE_MAX;
   std::vector<std::vector<uint32_t>> bestCurveSamples;
   for (int cert = 0;; ++cert) {
+    // Refine every patch that needs it; a refinement that splits a boundary segment adds a
+    // curve sample there, which the patches on the other side of that curve must include: they
+    // are refined again from scratch with it, until no patch splits a segment (samples only get
+    // added, and each refinement is Ruppert's on its own, so this settles in a few rounds).
     int round = 0;
-    {
+    for (;; ++round) {
       std::vector<uint32_t> todo;
       for (uint32_t p = 0; p < work_.size(); ++p)
-        if (work_[p]->needsMesh) todo.push_back(p);
+        if (work_[p]->needsMesh || (work_[p]->dirty && round < kConformingRounds)) todo.push_back(p);
+      if (todo.empty()) break;
+      if (std::getenv("CONFORMESH_DEBUG7")) {
+        std::vector<size_t> cnt(seg_.curves.size());
+        for (size_t c = 0; c < cnt.size(); ++c) cnt[c] = cm_.curveSamples[c].size();
+        static std::vector<size_t> last;
+        if (last.size() == cnt.size())
+          for (size_t c = 0; c < cnt.size(); ++c)
+            if (cnt[c] > last[c] + 2) std::fprintf(stderr, "  round %d curve %zu (patches %u %u, len %.3g): %zu -> %zu samples\n", round, c, seg_.curves[c].patches[0], seg_.curves[c].patches[1], seg_.curves[c].length, last[c], cnt[c]);
+        last = cnt;
+      }
+      if (std::getenv("CONFORMESH_DEBUG2")) std::fprintf(stderr, "conforming round %d: %zu patches, %zu samples\n", round, todo.size(), cm_.samples.size());
       for (size_t i = 0; i < todo.size(); ++i) {
         meshPatch(todo[i]);
         checkCancel(Stage::Refine, double(i + 1) / double(todo.size()));
       }
-      // patches whose boundary got samples from a neighbour's segment splits: insert them
-      // (boundary edge split + Delaunay flips); this adds no new samples, so one pass suffices
-      for (uint32_t p = 0; p < work_.size(); ++p)
-        if (work_[p]->dirty) patchUp(p), round = 1;
     }
+    if (std::getenv("CONFORMESH_DEBUG7")) {
+      static std::vector<size_t> prev;
+      prev.resize(seg_.curves.size(), 0);
+      for (size_t c = 0; c < seg_.curves.size(); ++c) {
+        size_t n = cm_.curveSamples[c].size();
+        if (n > prev[c] + 3 && prev[c] > 0)
+          std::fprintf(stderr, "curve %zu kind %d patches %u %u length %.4g samples %zu -> %zu, h at ends %.3g %.3g\n", c, int(seg_.curves[c].kind), seg_.curves[c].patches[0], seg_.curves[c].patches[1], seg_.curves[c].length, prev[c], n, sizing_.h[seg_.curves[c].vertices.front()], sizing_.h[seg_.curves[c].vertices.back()]);
+        prev[c] = n;
+      }
+    }
+    // past the round cap: insert the remaining samples into the existing meshes (boundary edge
+    // split + Delaunay flips; adds no new samples)
+    for (uint32_t p = 0; p < work_.size(); ++p)
+      if (work_[p]->dirty) {
+        patchUp(p);
+        rep_.warnings.push_back("patch " + std::to_string(p) + ": boundary samples inserted after the conforming round cap");
+      }
     rep_.conformingRounds = std::max(rep_.conformingRounds, round);
     rep_.seconds.refine += elapsed(t0);
     out = stitch(triPatch);
@@ -808,6 +752,27 @@ RemeshResult Pipeline::run(const MeshBuffers& input) {
         ++bad;
     }
     if (std::getenv("CONFORMESH_DEBUG2")) std::fprintf(stderr, "certificate round %d: %zu bad triangles of %zu\n", cert, bad, out.triangleCount());
+    if (std::getenv("CONFORMESH_DEBUG5")) {
+      std::vector<size_t> first(work_.size(), 0);
+      for (size_t i = triPatch.size(); i-- > 0;) first[triPatch[i]] = i;
+      for (size_t t = 0; t < out.triangleCount(); ++t) {
+        double a3 = triangleMinAngle(out, t);
+        if (a3 >= opt_.minAngleDeg) continue;
+        const PatchWork& w = *work_[triPatch[t]];
+        const uint32_t* lt = &w.triangles[3 * (t - first[triPatch[t]])];
+        double a2 = 180;
+        for (int c = 0; c < 3; ++c) {
+          const double* A = &w.planarPoints[2 * lt[c]];
+          const double* B = &w.planarPoints[2 * lt[(c + 1) % 3]];
+          const double* C = &w.planarPoints[2 * lt[(c + 2) % 3]];
+          double ux = B[0] - A[0], uy = B[1] - A[1], vx = C[0] - A[0], vy = C[1] - A[1];
+          a2 = std::min(a2, std::atan2(std::abs(ux * vy - uy * vx), ux * vx + uy * vy) * 180 / kPi);
+        }
+        int nb = 0;
+        for (int c = 0; c < 3; ++c) nb += w.localToGlobal[lt[c]] != kNone;
+        std::fprintf(stderr, "bad t%zu patch %u 3D %.2f planar %.2f boundaryVerts %d iters %d distMax %.3g\n", t, triPatch[t], a3, a2, nb, w.flat.report.iterations, w.flat.report.angleDistortionMax);
+      }
+    }
     if (bad < bestBad) {
       bestBad = bad;
       bestOut = out;

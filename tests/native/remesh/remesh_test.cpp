@@ -5,6 +5,8 @@
 #include <set>
 
 #include "features/test_shapes.h"
+#include "mesh/mesh_io.h"
+#include "../mesh/mesh_io_test_util.h"
 #include "quality/metrics.h"
 #include "remesh/remesh.h"
 
@@ -13,7 +15,9 @@ using namespace conformesh;
 namespace {
 // Properties every remesh output must have: manifold, same topology as the input, vertices on the
 // input surface, min 3D angle >= bound except around the listed exempt corners.
-void checkRemesh(const MeshBuffers& in, const RemeshOptions& o, const char* name) {
+// `flat`: the shape is flat between its features, so the mean edge length is the target (on a
+// curved shape the chord tolerance makes it smaller).
+void checkRemesh(const MeshBuffers& in, const RemeshOptions& o, const char* name, bool flat = true) {
   INFO(name);
   RemeshResult r = remesh(in, o);
   REQUIRE_MESSAGE(r.status.ok(), r.status.message);
@@ -42,7 +46,7 @@ void checkRemesh(const MeshBuffers& in, const RemeshOptions& o, const char* name
   CHECK(r.report.trianglesBelowBoundOutsideExempt == 0);
   CHECK(r.report.minAngleOutsideExempt >= o.minAngleDeg - 1e-9);
   // size: mean edge length near the target (flat shapes)
-  CHECK(r.report.meanEdgeLength > 0.6 * r.report.targetEdgeLength);
+  if (flat) CHECK(r.report.meanEdgeLength > 0.6 * r.report.targetEdgeLength);
   CHECK(r.report.meanEdgeLength < 1.4 * r.report.targetEdgeLength);
 }
 }  // namespace
@@ -54,21 +58,18 @@ TEST_CASE("remesh: cube keeps its 12 edges, 30 degree bound, vertices on the sur
   checkRemesh(testshapes::cube(4), o, "cube");
 }
 
-// Known failing (see the remesh branch report): a segment split on a curved feature is not
-// yet recorded at the right place in the curve, and slivers remain at the circles.
-TEST_CASE("remesh: cylinder with caps" * doctest::skip(true)) {
+TEST_CASE("remesh: cylinder with caps") {
   RemeshOptions o;
   o.targetEdgeLengthRel = 0.05;
   o.hausdorffSamples = 2000;
-  checkRemesh(testshapes::cylinder(48, 12, 6), o, "cylinder");
+  checkRemesh(testshapes::cylinder(48, 12, 6), o, "cylinder", false);
 }
 
-// Known failing: the cut patches of the torus do not stitch into a manifold yet.
-TEST_CASE("remesh: torus (genus 1)" * doctest::skip(true)) {
+TEST_CASE("remesh: torus (genus 1)") {
   RemeshOptions o;
   o.targetEdgeLengthRel = 0.04;
   o.hausdorffSamples = 2000;
-  checkRemesh(testshapes::torus(64, 24), o, "torus");
+  checkRemesh(testshapes::torus(64, 24), o, "torus", false);
 }
 
 TEST_CASE("remesh: bad options and bad input come back as a status") {
@@ -83,4 +84,27 @@ TEST_CASE("remesh: bad options and bad input come back as a status") {
   int calls = 0;
   r = remesh(testshapes::cube(3), o, [&](Stage, double) { return ++calls < 3; });
   CHECK(r.status.code == Code::Cancelled);
+}
+
+// Models of ../shared/data that meet every property with the defaults.
+TEST_CASE("remesh: shared/data models with the defaults (fandisk, 3holes, holes, alligator)") {
+  for (const char* name : {"fandisk.off", "3holes.off", "holes.off", "alligator.obj"}) {
+    ReadResult rr = readMesh(test::readFile(std::string(CONFORMESH_DATA_DIR) + "/" + name));
+    RemeshOptions o;
+    o.hausdorffSamples = 5000;
+    checkRemesh(rr.mesh, o, name, false);
+  }
+}
+
+// Known failures (issue 5): on these models some patches' free-boundary layout overlaps itself
+// (a patch cut open around a hole lies on top of itself), the fallback boundary conditions
+// distort, and triangles below 30 degrees or a broken stitch remain. should_fail: this test
+// turns red when they start passing, so it gets moved to the list above.
+TEST_CASE("remesh: shared/data models not yet meeting the bound (fertility, spot)" * doctest::should_fail()) {
+  for (const char* name : {"fertility.off", "spot.obj"}) {
+    ReadResult rr = readMesh(test::readFile(std::string(CONFORMESH_DATA_DIR) + "/" + name));
+    RemeshOptions o;
+    o.hausdorffSamples = 5000;
+    checkRemesh(rr.mesh, o, name, false);
+  }
 }
