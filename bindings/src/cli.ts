@@ -327,6 +327,7 @@ const commands: Record<string, Command> = {
           `"flowIterations":[${R.flowIterations.join(',')}]`,
           num('conformingRounds', R.conformingRounds),
           num('certificateRounds', R.certificateRounds),
+          `"warnings":${JSON.stringify(R.warnings)}`,
           `"topologyPreserved":${R.topologyPreserved ? 'true' : 'false'}`,
           `"seconds":{${(['validate', 'segment', 'flatten', 'curveMesh', 'refine', 'lift', 'stitch', 'report', 'total'] as const)
             .map((k) => num(k, t[k]))
@@ -347,6 +348,7 @@ const commands: Record<string, Command> = {
         row('feature curves kept', `${R.featureCurvesKept} / ${R.featureCurves}`);
         row('patches', `${R.patches} (${R.curves} curves, ${R.curveSamples} samples)`);
         row('topology preserved', R.topologyPreserved ? 'yes' : 'NO');
+        for (const w of R.warnings) row('warning', w);
         row(
           'seconds',
           `validate ${fixed(t.validate, 3)}, segment ${fixed(t.segment, 3)}, flatten ${fixed(t.flatten, 3)}, curves ${fixed(t.curveMesh, 3)}, ` +

@@ -1,3 +1,4 @@
+#include <algorithm>
 #include "features/patch_mesh.h"
 
 #include <numeric>
@@ -65,6 +66,11 @@ PatchMesh extractPatch(const EdgeGraph& g, const std::vector<uint8_t>& isCurve,
       }
       pm.mesh.triangles[3 * i + c] = rootVertex[r];
     }
+  }
+  {
+    std::vector<uint32_t> sorted = pm.vertexInput;
+    std::sort(sorted.begin(), sorted.end());
+    pm.pinched = std::adjacent_find(sorted.begin(), sorted.end()) != sorted.end();
   }
   const long V = long(pm.vertexInput.size()), F = long(nF);
   const long E = (3 * F + long(boundaryHalfedges)) / 2;

@@ -31,7 +31,12 @@ struct PatchMesh {
   int eulerCharacteristic = 0;
 
   //! χ = 1 and exactly one boundary loop: a topological disk.
-  bool isDisk() const { return eulerCharacteristic == 1 && boundaryLoops.size() == 1; }
+  //! True when two sub-mesh vertices are the same input vertex: the patch touches itself at a
+  //! vertex (a pinch), so its boundary is not a simple curve on the surface.
+  bool pinched = false;
+  //! A disk whose boundary is a simple curve on the surface (no pinch: a flattening that keeps
+  //! lengths, as the free boundary does on a developable patch, would make it touch itself).
+  bool isDisk() const { return eulerCharacteristic == 1 && boundaryLoops.size() == 1 && !pinched; }
   //! Genus from χ = 2 − 2g − b.
   int genus() const { return (2 - eulerCharacteristic - int(boundaryLoops.size())) / 2; }
 };

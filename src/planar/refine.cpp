@@ -359,7 +359,7 @@ class Refiner {
     const double* pu = T_.pt(u);
     const double* pv = T_.pt(v);
     double L2 = dist2(pu, pv);
-    if (L2 < minSeg2_) {
+    if (L2 < minSeg2_ || !o_.splitSegments) {
       ++rejected_;
       unsplittable_.insert(CdtState::key(u, v));
       return;

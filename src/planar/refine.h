@@ -42,6 +42,11 @@ struct RefineOptions {
   //! gave ~9% fewer triangles on data/pslg/wiggly5000 (the lens splits fewer segments but
   //! needs more interior vertices). Circles when θ = 0.
   bool diametralLens = false;
+  //! Split encroached subsegments (Ruppert). false: segments are kept as given (no Steiner
+  //! vertex on them); a bad triangle whose new vertex would encroach upon a segment is then left
+  //! as it is (it counts in minAngleDeg, not as exempt). For meshing several domains that
+  //! share their boundary points when one of them may no longer add points there.
+  bool splitSegments = true;
   //! Hard cap on Steiner vertices; hitting it stops with status IterationLimit (mesh kept).
   size_t maxInsertions = 100000000;
   //! Domain options of the CDT (convex hull, holes by orientation).

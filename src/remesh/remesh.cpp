@@ -28,6 +28,8 @@ using F::kNone;
 constexpr double kPi = 3.14159265358979323846;
 // Rounds of re-refining patches whose boundary got samples from a neighbour's segment splits.
 constexpr int kConformingRounds = 8;
+// Patches with fewer input faces are not split further.
+constexpr size_t kMinSplitFaces = 16;
 // Degrees added to the angle bound for the planar refinement (see meshPatch).
 constexpr double kPlanarAngleMargin = 2.0;
 
@@ -81,9 +83,8 @@ class Pipeline {
   std::vector<std::pair<uint32_t, double>> boundaryCorners(const F::PatchMesh& pm) const;
   void indexSamples();
   std::vector<BoundaryPoint> boundaryPoints(const PatchWork& w) const;
-  void meshPatch(uint32_t p);
+  void meshPatch(uint32_t p, bool splitSegments = true);
   bool liftPoint(const PatchWork& w, double x, double y, PullbackPoint& q) const;
-  void patchUp(uint32_t p);
   uint32_t addSplitSample(const PatchWork& w, const std::vector<BoundaryPoint>& bp, uint32_t s, double t);
   double curveKey(uint32_t c, uint32_t sample) const;
   MeshBuffers stitch(std::vector<uint32_t>& trianglePatch) const;
@@ -176,12 +177,30 @@ void Pipeline::flattenPatches() {
         } catch (const Error& e) {
           if (e.code() == Code::Cancelled) throw;
           lastError = e.what();
+          // the free boundary failed (its layout overlaps itself): smaller parts are closer to
+          // developable and keep the least distorting map; split while the patch is big enough
+          if (bc == BoundaryCondition::Free && faces.size() >= kMinSplitFaces && F::splitPatch(g_, seg_, p)) {
+            ++scaleSplits_;
+            rep_.warnings.push_back("patch split after the free boundary failed: " + lastError);
+            split = true;
+            break;
+          }
+          if (std::getenv("CONFORMESH_DEBUG8")) {
+            double area = 0, blen = 0;
+            for (uint32_t f : faces) area += g_.faceArea(f);
+            for (const auto& h : w->pm.boundaryLoops[0]) {
+              uint32_t a = w->pm.mesh.triangles[3 * h.face + h.corner], b = w->pm.mesh.triangles[3 * h.face + (h.corner + 1) % 3];
+              blen += g_.edgeLength(g_.findEdge(w->pm.vertexInput[a], w->pm.vertexInput[b]));
+            }
+            std::fprintf(stderr, "patch %u bc %d failed: %zu faces, area %.4g, boundary %.4g (disk ratio 4 pi A / L^2 = %.3f): %s\n", p, int(bc), faces.size(), area, blen, 4 * kPi * area / (blen * blen), e.what());
+          }
         }
       }
+      if (split) break;
       if (!flattened) {
         // every boundary condition failed (a layout that overlaps itself or a flow that stalls):
         // split the patch and retry
-        if (faces.size() < 16 || !F::splitPatch(g_, seg_, p))
+        if (faces.size() < kMinSplitFaces || !F::splitPatch(g_, seg_, p))
           fail(Code::NumericalFailure, Stage::Flatten, "patch " + std::to_string(p) + " could not be flattened: " + lastError);
         ++scaleSplits_;
         rep_.warnings.push_back("patch split after a flattening failure: " + lastError);
@@ -208,7 +227,7 @@ void Pipeline::flattenPatches() {
         smin = std::min(smin, w->scaleSub[v]);
         smax = std::max(smax, w->scaleSub[v]);
       }
-      if (smax > opt_.maxScaleRatio * smin && faces.size() >= 16) {
+      if (smax > opt_.maxScaleRatio * smin && faces.size() >= kMinSplitFaces) {
         if (F::splitPatch(g_, seg_, p)) {
           ++scaleSplits_;
           split = true;
@@ -382,7 +401,7 @@ bool Pipeline::liftPoint(const PatchWork& w, double x, double y, PullbackPoint& 
   return std::isfinite(best) && pb.locate(bx, by, q, 1e-6);
 }
 
-void Pipeline::meshPatch(uint32_t p) {
+void Pipeline::meshPatch(uint32_t p, bool splitSegments) {
   PatchWork& w = *work_[p];
   w.builtAt = ++stamp_;
   w.dirty = false;
@@ -408,6 +427,7 @@ void Pipeline::meshPatch(uint32_t p) {
   // of the lift (the map is conformal only in the discrete sense; measured: ≤ ~1.5° on the
   // models in ../shared/data with the free boundary).
   ro.diametralLens = true;
+  ro.splitSegments = splitSegments;
   ro.minAngleDeg = std::min(opt_.minAngleDeg + kPlanarAngleMargin, 34.0);
   // Longest-edge bound of the refinement vs the mean edge length it gives: calibrated so the
   // mean output edge length in flat regions is the target.
@@ -470,114 +490,6 @@ void Pipeline::meshPatch(uint32_t p) {
   w.triangles = pmsh.triangles;
   w.planarPoints = pmsh.points;
   liftSeconds_ += elapsed(tl);
-}
-
-// Insert the curve samples a neighbour added on this patch's boundary into its planar mesh:
-// split the boundary triangle at the sample, then restore the Delaunay property by Lawson flips
-// of interior edges. Positions of existing vertices do not change.
-void Pipeline::patchUp(uint32_t p) {
-  PatchWork& w = *work_[p];
-  w.dirty = false;
-  std::vector<BoundaryPoint> bp = boundaryPoints(w);
-  auto& P = w.planarPoints;
-  auto& T = w.triangles;
-  auto edgeKey = [](uint32_t a, uint32_t b) { return (uint64_t(std::min(a, b)) << 32) | std::max(a, b); };
-  // boundary edges of the current planar mesh, as directed (a, b) with the opposite vertex
-  auto boundaryEdges = [&]() {
-    std::unordered_map<uint64_t, int> count;
-    for (size_t t = 0; t < T.size(); t += 3)
-      for (int c = 0; c < 3; ++c) ++count[edgeKey(T[t + c], T[t + (c + 1) % 3])];
-    std::vector<std::array<uint32_t, 2>> out;  // (triangle, corner)
-    for (size_t t = 0; t < T.size(); t += 3)
-      for (int c = 0; c < 3; ++c)
-        if (count[edgeKey(T[t + c], T[t + (c + 1) % 3])] == 1) out.push_back({uint32_t(t / 3), uint32_t(c)});
-    return out;
-  };
-  auto be = boundaryEdges();
-  std::vector<uint32_t> touched;
-  // samples the mesh already has on its boundary (a seam curve has them twice)
-  std::unordered_map<uint32_t, int> have, want;
-  for (const auto& e : be) ++have[w.localToGlobal[T[3 * e[0] + e[1]]]];
-  for (const auto& b : bp) ++want[b.sample];
-  for (const auto& b : bp) {
-    if (have[b.sample] >= want[b.sample]) continue;
-    ++have[b.sample];
-    // the boundary edge it lies on: smallest distance, strictly inside
-    double best = INFINITY;
-    size_t bi = kNone;
-    for (size_t k = 0; k < be.size(); ++k) {
-      uint32_t a = T[3 * be[k][0] + be[k][1]], c = T[3 * be[k][0] + (be[k][1] + 1) % 3];
-      double ex = P[2 * c] - P[2 * a], ey = P[2 * c + 1] - P[2 * a + 1];
-      double l2 = ex * ex + ey * ey;
-      if (l2 == 0) continue;
-      if (w.localToGlobal[a] == b.sample || w.localToGlobal[c] == b.sample) continue;
-      double t = std::clamp(((b.x - P[2 * a]) * ex + (b.y - P[2 * a + 1]) * ey) / l2, 0.0, 1.0);
-      double d = std::hypot(P[2 * a] + t * ex - b.x, P[2 * a + 1] + t * ey - b.y);
-      if (d < best) best = d, bi = k;
-    }
-    if (bi == kNone) fail(Code::InternalError, Stage::Stitch, "a shared curve sample is not on the patch boundary");
-    uint32_t tri = be[bi][0], c = be[bi][1];
-    uint32_t a = T[3 * tri + c], bb = T[3 * tri + (c + 1) % 3], o = T[3 * tri + (c + 2) % 3];
-    uint32_t m = uint32_t(P.size() / 2);
-    P.insert(P.end(), {b.x, b.y});
-    w.localToGlobal.push_back(b.sample);
-    w.interiorPositions.push_back({});
-    T[3 * tri] = a, T[3 * tri + 1] = m, T[3 * tri + 2] = o;
-    uint32_t nt = uint32_t(T.size() / 3);
-    T.insert(T.end(), {m, bb, o});
-    be[bi] = {tri, 0};
-    be.push_back({nt, 0});
-    touched.push_back(tri);
-    touched.push_back(nt);
-  }
-  if (touched.empty()) return;
-  // Lawson flips on interior edges around the touched triangles
-  std::unordered_map<uint64_t, std::array<uint32_t, 2>> adj;
-  auto rebuild = [&]() {
-    adj.clear();
-    for (uint32_t t = 0; t < T.size() / 3; ++t)
-      for (int c = 0; c < 3; ++c) {
-        auto& x = adj.try_emplace(edgeKey(T[3 * t + c], T[3 * t + (c + 1) % 3]), std::array<uint32_t, 2>{kNone, kNone}).first->second;
-        (x[0] == kNone ? x[0] : x[1]) = t;
-      }
-  };
-  rebuild();
-  auto incircle = [&](uint32_t a, uint32_t b, uint32_t c, uint32_t d) {
-    double adx = P[2 * a] - P[2 * d], ady = P[2 * a + 1] - P[2 * d + 1];
-    double bdx = P[2 * b] - P[2 * d], bdy = P[2 * b + 1] - P[2 * d + 1];
-    double cdx = P[2 * c] - P[2 * d], cdy = P[2 * c + 1] - P[2 * d + 1];
-    return (adx * adx + ady * ady) * (bdx * cdy - cdx * bdy) + (bdx * bdx + bdy * bdy) * (cdx * ady - adx * cdy) +
-           (cdx * cdx + cdy * cdy) * (adx * bdy - bdx * ady);
-  };
-  auto orient = [&](uint32_t a, uint32_t b, uint32_t c) {
-    return (P[2 * b] - P[2 * a]) * (P[2 * c + 1] - P[2 * a + 1]) - (P[2 * b + 1] - P[2 * a + 1]) * (P[2 * c] - P[2 * a]);
-  };
-  std::vector<uint32_t> stack = touched;
-  for (size_t guard = 0; !stack.empty() && guard < 100000; ++guard) {
-    uint32_t t = stack.back();
-    stack.pop_back();
-    for (int c = 0; c < 3; ++c) {
-      uint32_t a = T[3 * t + c], b = T[3 * t + (c + 1) % 3], o = T[3 * t + (c + 2) % 3];
-      auto it = adj.find(edgeKey(a, b));
-      if (it == adj.end() || it->second[1] == kNone) continue;  // boundary edge: constrained
-      uint32_t u = it->second[0] == t ? it->second[1] : it->second[0];
-      uint32_t d = kNone;
-      for (int k = 0; k < 3; ++k)
-        if (T[3 * u + k] != a && T[3 * u + k] != b) d = T[3 * u + k];
-      if (incircle(a, b, o, d) <= 0) continue;
-      // quad strictly convex (relative tolerance: never create a sliver from collinear points)
-      double l2 = std::pow(P[2 * o] - P[2 * d], 2) + std::pow(P[2 * o + 1] - P[2 * d + 1], 2);
-      double l2ab = std::pow(P[2 * a] - P[2 * b], 2) + std::pow(P[2 * a + 1] - P[2 * b + 1], 2);
-      if (orient(o, a, d) <= 1e-10 * std::max(l2, l2ab) || orient(d, b, o) <= 1e-10 * std::max(l2, l2ab)) continue;
-      // flip ab -> od: triangles (o, a, d) and (d, b, o), both counter-clockwise
-      T[3 * t] = o, T[3 * t + 1] = a, T[3 * t + 2] = d;
-      T[3 * u] = d, T[3 * u + 1] = b, T[3 * u + 2] = o;
-      rebuild();
-      stack.push_back(t);
-      stack.push_back(u);
-      break;
-    }
-  }
 }
 
 MeshBuffers Pipeline::stitch(std::vector<uint32_t>& trianglePatch) const {
@@ -717,12 +629,14 @@ RemeshResult Pipeline::run(const MeshBuffers& input) {
         prev[c] = n;
       }
     }
-    // past the round cap: insert the remaining samples into the existing meshes (boundary edge
-    // split + Delaunay flips; adds no new samples)
+    // past the round cap (refinements near small angles between curves can keep splitting
+    // each other's segments): refine the patches still missing samples once more, without
+    // splitting their boundary, so every patch has exactly the curve samples and they stitch
     for (uint32_t p = 0; p < work_.size(); ++p)
       if (work_[p]->dirty) {
-        patchUp(p);
-        rep_.warnings.push_back("patch " + std::to_string(p) + ": boundary samples inserted after the conforming round cap");
+        meshPatch(p, false);
+        rep_.warnings.push_back("patch " + std::to_string(p) + ": refined without boundary splits after " +
+                                std::to_string(kConformingRounds) + " conforming rounds");
       }
     rep_.conformingRounds = std::max(rep_.conformingRounds, round);
     rep_.seconds.refine += elapsed(t0);
