@@ -9,4 +9,8 @@ ctest --test-dir build/native --output-on-failure
 echo "== wasm tests (ctest, node)"
 ctest --test-dir build/wasm --output-on-failure
 echo "== js tests (vitest)"
-npx vitest run
+npx vitest run tests/js
+# The page tests measure the main thread's frame gaps during a remesh: they run after the others,
+# one file at a time, so the measurement does not share the two cores with other CPU-heavy tests.
+echo "== page tests (vitest, headless Chromium)"
+npx vitest run tests/e2e --no-file-parallelism

@@ -185,15 +185,6 @@ void Pipeline::flattenPatches() {
             split = true;
             break;
           }
-          if (std::getenv("CONFORMESH_DEBUG8")) {
-            double area = 0, blen = 0;
-            for (uint32_t f : faces) area += g_.faceArea(f);
-            for (const auto& h : w->pm.boundaryLoops[0]) {
-              uint32_t a = w->pm.mesh.triangles[3 * h.face + h.corner], b = w->pm.mesh.triangles[3 * h.face + (h.corner + 1) % 3];
-              blen += g_.edgeLength(g_.findEdge(w->pm.vertexInput[a], w->pm.vertexInput[b]));
-            }
-            std::fprintf(stderr, "patch %u bc %d failed: %zu faces, area %.4g, boundary %.4g (disk ratio 4 pi A / L^2 = %.3f): %s\n", p, int(bc), faces.size(), area, blen, 4 * kPi * area / (blen * blen), e.what());
-          }
         }
       }
       if (split) break;
@@ -369,16 +360,29 @@ uint32_t Pipeline::addSplitSample(const PatchWork& w, const std::vector<Boundary
   size_t pos = 1;
   while (pos + 1 < ids.size() && curveKey(c, ids[pos]) < key) ++pos;
   ids.insert(ids.begin() + long(pos), id);
-  if (std::getenv("CONFORMESH_DEBUG4")) {
-    uint32_t c0 = seg_.edgeCurve[cm_.samples[p0.sample].edge], c1 = seg_.edgeCurve[cm_.samples[p1.sample].edge];
-    std::fprintf(stderr, "split seg %u (samples %u -> %u, curves %u %u) t=%.3f -> sample %u on curve %u key %.3f; keys ends %.3f %.3f; pieces %zu\n", s, p0.sample, p1.sample, c0, c1, t, id, c,
-                 key, std::find(ids.begin(), ids.end(), p0.sample) != ids.end() ? curveKey(c, p0.sample) : -1.0,
-                 std::find(ids.begin(), ids.end(), p1.sample) != ids.end() ? curveKey(c, p1.sample) : -1.0, pieces.size());
-  }
   ++stamp_;
   for (uint32_t q : seg_.curves[c].patches)
     if (q != kNone && work_[q]->builtAt < stamp_) work_[q]->dirty = true;
   return id;
+}
+
+// Fewer than 3 boundary samples, or all of them on one line (relative to their spread).
+bool degenerateBoundary(const std::vector<BoundaryPoint>& bp) {
+  if (bp.size() < 3) return true;
+  double minx = INFINITY, miny = INFINITY, maxx = -INFINITY, maxy = -INFINITY;
+  for (const auto& b : bp) minx = std::min(minx, b.x), maxx = std::max(maxx, b.x), miny = std::min(miny, b.y), maxy = std::max(maxy, b.y);
+  const double span = std::max(maxx - minx, maxy - miny);
+  if (!(span > 0)) return true;
+  // the point farthest from the line through the first point and the point farthest from it
+  size_t far = 0;
+  double d2 = 0;
+  for (size_t i = 1; i < bp.size(); ++i) {
+    double dd = std::pow(bp[i].x - bp[0].x, 2) + std::pow(bp[i].y - bp[0].y, 2);
+    if (dd > d2) d2 = dd, far = i;
+  }
+  double ex = bp[far].x - bp[0].x, ey = bp[far].y - bp[0].y, l = std::sqrt(d2), off = 0;
+  for (const auto& b : bp) off = std::max(off, std::abs((b.x - bp[0].x) * ey - (b.y - bp[0].y) * ex) / l);
+  return off < 1e-6 * span;
 }
 
 // Lift a planar point onto the input surface. The PSLG's boundary segments are chords of the
@@ -407,17 +411,38 @@ void Pipeline::meshPatch(uint32_t p, bool splitSegments) {
   w.dirty = false;
   w.needsMesh = false;
   std::vector<BoundaryPoint> bp = boundaryPoints(w);
-  if (bp.size() < 3) fail(Code::InternalError, Stage::Refine, "a patch boundary has fewer than 3 samples");
-  if (std::getenv("CONFORMESH_DEBUG6"))
+  // A small patch bounded by short curves can have fewer than 3 boundary samples, or only
+  // collinear ones (two curves between the same two corners): add a sample in the middle of the
+  // longest boundary stretch (shared with the neighbour like any segment split) until it has a
+  // proper polygon.
+  for (int guard = 0; guard < 8 && degenerateBoundary(bp); ++guard) {
+    size_t longest = 0;
+    double best = -1;
     for (size_t i = 0; i < bp.size(); ++i) {
       const auto& a = bp[i];
       const auto& b = bp[(i + 1) % bp.size()];
-      if (a.x == b.x && a.y == b.y) {
-        const auto& sa = cm_.samples[a.sample];
-        const auto& sb = cm_.samples[b.sample];
-        std::fprintf(stderr, "patch %u coincident bp %zu: samples %u (v %u e %u t %.17g) loopPos %u param %g / %u (v %u e %u t %.17g) loopPos %u param %g, n=%zu\n", p, i, a.sample, sa.vertex, sa.edge, sa.t, a.loopPos, a.param, b.sample, sb.vertex, sb.edge, sb.t, b.loopPos, b.param, bp.size());
+      // arc length along the flattened boundary from a to b
+      double len = 0;
+      const auto& loop = w.pm.boundaryLoops[0];
+      for (uint32_t k = a.loopPos, n = 0; n <= loop.size(); k = (k + 1) % uint32_t(loop.size()), ++n) {
+        const auto& h = loop[k];
+        uint32_t va = w.pm.mesh.triangles[3 * h.face + h.corner], vb = w.pm.mesh.triangles[3 * h.face + (h.corner + 1) % 3];
+        double el = std::hypot(w.flat.uv[2 * vb] - w.flat.uv[2 * va], w.flat.uv[2 * vb + 1] - w.flat.uv[2 * va + 1]);
+        double from = k == a.loopPos && n == 0 ? a.param : 0.0;
+        if (k == b.loopPos && (n > 0 || b.param > a.param || bp.size() == 1)) {
+          len += (b.param - from) * el;
+          break;
+        }
+        len += (1.0 - from) * el;
       }
+      if (len > best) best = len, longest = i;
     }
+    addSplitSample(w, bp, uint32_t(longest), 0.5);
+    w.builtAt = ++stamp_;
+    w.dirty = false;
+    bp = boundaryPoints(w);
+  }
+  if (degenerateBoundary(bp)) fail(Code::InternalError, Stage::Refine, "patch " + std::to_string(p) + ": its boundary samples do not make a polygon");
   planar::Pslg pslg;
   for (const auto& b : bp) pslg.points.insert(pslg.points.end(), {b.x, b.y});
   for (uint32_t i = 0; i < bp.size(); ++i) pslg.segments.insert(pslg.segments.end(), {i, uint32_t((i + 1) % bp.size())});
@@ -604,29 +629,9 @@ RemeshResult Pipeline::run(const MeshBuffers& input) {
       for (uint32_t p = 0; p < work_.size(); ++p)
         if (work_[p]->needsMesh || (work_[p]->dirty && round < kConformingRounds)) todo.push_back(p);
       if (todo.empty()) break;
-      if (std::getenv("CONFORMESH_DEBUG7")) {
-        std::vector<size_t> cnt(seg_.curves.size());
-        for (size_t c = 0; c < cnt.size(); ++c) cnt[c] = cm_.curveSamples[c].size();
-        static std::vector<size_t> last;
-        if (last.size() == cnt.size())
-          for (size_t c = 0; c < cnt.size(); ++c)
-            if (cnt[c] > last[c] + 2) std::fprintf(stderr, "  round %d curve %zu (patches %u %u, len %.3g): %zu -> %zu samples\n", round, c, seg_.curves[c].patches[0], seg_.curves[c].patches[1], seg_.curves[c].length, last[c], cnt[c]);
-        last = cnt;
-      }
-      if (std::getenv("CONFORMESH_DEBUG2")) std::fprintf(stderr, "conforming round %d: %zu patches, %zu samples\n", round, todo.size(), cm_.samples.size());
       for (size_t i = 0; i < todo.size(); ++i) {
         meshPatch(todo[i]);
         checkCancel(Stage::Refine, double(i + 1) / double(todo.size()));
-      }
-    }
-    if (std::getenv("CONFORMESH_DEBUG7")) {
-      static std::vector<size_t> prev;
-      prev.resize(seg_.curves.size(), 0);
-      for (size_t c = 0; c < seg_.curves.size(); ++c) {
-        size_t n = cm_.curveSamples[c].size();
-        if (n > prev[c] + 3 && prev[c] > 0)
-          std::fprintf(stderr, "curve %zu kind %d patches %u %u length %.4g samples %zu -> %zu, h at ends %.3g %.3g\n", c, int(seg_.curves[c].kind), seg_.curves[c].patches[0], seg_.curves[c].patches[1], seg_.curves[c].length, prev[c], n, sizing_.h[seg_.curves[c].vertices.front()], sizing_.h[seg_.curves[c].vertices.back()]);
-        prev[c] = n;
       }
     }
     // past the round cap (refinements near small angles between curves can keep splitting
@@ -664,28 +669,6 @@ RemeshResult Pipeline::run(const MeshBuffers& input) {
       const uint32_t* tv = &out.triangles[3 * t];
       if (!exemptVertex[tv[0]] && !exemptVertex[tv[1]] && !exemptVertex[tv[2]] && triangleMinAngle(out, t) < opt_.minAngleDeg)
         ++bad;
-    }
-    if (std::getenv("CONFORMESH_DEBUG2")) std::fprintf(stderr, "certificate round %d: %zu bad triangles of %zu\n", cert, bad, out.triangleCount());
-    if (std::getenv("CONFORMESH_DEBUG5")) {
-      std::vector<size_t> first(work_.size(), 0);
-      for (size_t i = triPatch.size(); i-- > 0;) first[triPatch[i]] = i;
-      for (size_t t = 0; t < out.triangleCount(); ++t) {
-        double a3 = triangleMinAngle(out, t);
-        if (a3 >= opt_.minAngleDeg) continue;
-        const PatchWork& w = *work_[triPatch[t]];
-        const uint32_t* lt = &w.triangles[3 * (t - first[triPatch[t]])];
-        double a2 = 180;
-        for (int c = 0; c < 3; ++c) {
-          const double* A = &w.planarPoints[2 * lt[c]];
-          const double* B = &w.planarPoints[2 * lt[(c + 1) % 3]];
-          const double* C = &w.planarPoints[2 * lt[(c + 2) % 3]];
-          double ux = B[0] - A[0], uy = B[1] - A[1], vx = C[0] - A[0], vy = C[1] - A[1];
-          a2 = std::min(a2, std::atan2(std::abs(ux * vy - uy * vx), ux * vx + uy * vy) * 180 / kPi);
-        }
-        int nb = 0;
-        for (int c = 0; c < 3; ++c) nb += w.localToGlobal[lt[c]] != kNone;
-        std::fprintf(stderr, "bad t%zu patch %u 3D %.2f planar %.2f boundaryVerts %d iters %d distMax %.3g\n", t, triPatch[t], a3, a2, nb, w.flat.report.iterations, w.flat.report.angleDistortionMax);
-      }
     }
     if (bad < bestBad) {
       bestBad = bad;
@@ -774,8 +757,6 @@ RemeshResult Pipeline::run(const MeshBuffers& input) {
     for (size_t i = 0; i + 1 < ids.size() && kept; ++i) {
       uint64_t a = ids[i], b = ids[i + 1];
       kept = edges.count(std::min(a, b) << 32 | std::max(a, b)) > 0;
-      if (!kept && std::getenv("CONFORMESH_DEBUG2"))
-        std::fprintf(stderr, "curve %zu (%zu samples): pair %zu (%u, %u) keys %g %g not an edge\n", c, ids.size(), i, ids[i], ids[i + 1], curveKey(uint32_t(c), ids[i]), curveKey(uint32_t(c), ids[i + 1]));
     }
     rep_.featureCurvesKept += kept;
   }

@@ -221,6 +221,15 @@ function paintRemesh(): void {
   remeshView.requestRender();
 }
 
+/** The remesh wireframe: built after the mesh, in its own task (see remesh()), or on first use. */
+function ensureRemeshWire(): void {
+  if (remeshWire || !output || !remeshMesh) return;
+  remeshWire = wireframe(output.result.mesh, 0x0c0e12, 0.55);
+  remeshWire.visible = toggles.remeshWire;
+  remeshView.scene.add(remeshWire);
+  remeshView.requestRender();
+}
+
 function buildRemesh(): void {
   remeshView.clear();
   remeshMesh = remeshWire = undefined;
@@ -236,9 +245,6 @@ function buildRemesh(): void {
   remeshMesh = faceColoredMesh(output.result.mesh);
   remeshView.scene.add(remeshMesh);
   remeshView.pickable = [remeshMesh];
-  remeshWire = wireframe(output.result.mesh, 0x0c0e12, 0.55);
-  remeshWire.visible = toggles.remeshWire;
-  remeshView.scene.add(remeshWire);
   paintRemesh();
   // same camera as the input view
   remeshView.camera.position.copy(inputView.camera.position);
@@ -558,9 +564,21 @@ async function remesh(): Promise<void> {
     if (result.inputPatchOfFace) libraryPatchOfFace = result.inputPatchOfFace;
     selected = undefined;
     STAGES.forEach((s) => setProgress(s, 1));
+    // Applying the result is split into tasks, so the page keeps drawing frames in between (the
+    // main thread is never blocked for long, even with a software GL).
+    const nextTask = () => new Promise<void>((resolve) => setTimeout(resolve, 0));
     buildInput(false);
+    await nextTask();
+    if (seq !== loadSeq) return;
     buildFlat();
+    await nextTask();
+    if (seq !== loadSeq) return;
     buildRemesh();
+    await nextTask();
+    if (seq !== loadSeq) return;
+    if (toggles.remeshWire) ensureRemeshWire();
+    await nextTask();
+    if (seq !== loadSeq) return;
     qualityTable();
     histogram();
     legend();
@@ -679,7 +697,11 @@ bindToggle('#show-input-wire', 'inputWire', () => {
 });
 bindToggle('#show-layout', 'layout', () => { for (const l of flat?.layoutLines ?? []) l.visible = toggles.layout; flatView.requestRender(); });
 bindToggle('#show-refined', 'refined', () => { for (const l of flat?.refinedLines ?? []) l.visible = toggles.refined; flatView.requestRender(); });
-bindToggle('#show-remesh-wire', 'remeshWire', () => { if (remeshWire) remeshWire.visible = toggles.remeshWire; remeshView.requestRender(); });
+bindToggle('#show-remesh-wire', 'remeshWire', () => {
+  if (toggles.remeshWire) ensureRemeshWire();
+  if (remeshWire) remeshWire.visible = toggles.remeshWire;
+  remeshView.requestRender();
+});
 
 // nothing escapes as an uncaught exception: show it in the page instead
 window.addEventListener('error', (e) => {
