@@ -27,6 +27,8 @@ val reportToJs(const RemeshReport& r) {
   o.set("pctBelow20", r.pctBelow20);
   o.set("pctBelow26", r.pctBelow26);
   o.set("pctBelow30", r.pctBelow30);
+  o.set("pctMinAtLeast40", r.pctMinAtLeast40);
+  o.set("pctMinAtLeast50", r.pctMinAtLeast50);
   o.set("minAngleOutsideExempt", r.minAngleOutsideExempt);
   o.set("trianglesBelowBoundOutsideExempt", double(r.trianglesBelowBoundOutsideExempt));
   val corners = val::array();
@@ -57,6 +59,8 @@ val reportToJs(const RemeshReport& r) {
   o.set("patchSplitsForScale", double(r.patchSplitsForScale));
   o.set("conformingRounds", r.conformingRounds);
   o.set("certificateRounds", r.certificateRounds);
+  o.set("optimizeMoves", double(r.optimizeMoves));
+  o.set("optimizeFlips", double(r.optimizeFlips));
   o.set("topologyPreserved", r.topologyPreserved);
   const StageSeconds& t = r.seconds;
   val s = val::object();
@@ -66,6 +70,7 @@ val reportToJs(const RemeshReport& r) {
   s.set("curveMesh", t.curveMesh);
   s.set("refine", t.refine);
   s.set("lift", t.lift);
+  s.set("optimize", t.optimize);
   s.set("stitch", t.stitch);
   s.set("report", t.report);
   s.set("total", t.total);
@@ -119,6 +124,9 @@ val remeshJs(val positions, val triangles, val vertexSizing, val featureEdges, v
     o.maxCertificateRounds =
         int(bindings::numberOption(options, "maxCertificateRounds", o.maxCertificateRounds, st, 0, 100));
     o.computeHausdorff = bindings::boolOption(options, "computeHausdorff", o.computeHausdorff, st);
+    o.optimize = bindings::boolOption(options, "optimize", o.optimize, st);
+    o.optimizeIterations = int(bindings::numberOption(options, "optimizeIterations", o.optimizeIterations, st, 0, 1000));
+    o.optimizeTolerance = bindings::numberOption(options, "optimizeTolerance", o.optimizeTolerance, st, 0);
     o.hausdorffSamples =
         size_t(bindings::numberOption(options, "hausdorffSamples", double(o.hausdorffSamples), st, 1, 1e8));
     o.vertexSizing = bindings::vectorFromJs<double>(vertexSizing);

@@ -179,6 +179,9 @@ const remeshKeys: (keyof RemeshOptions)[] = [
   'cornerTurn',
   'maxScaleRatio',
   'maxCertificateRounds',
+  'optimize',
+  'optimizeIterations',
+  'optimizeTolerance',
   'computeHausdorff',
   'hausdorffSamples',
 ];

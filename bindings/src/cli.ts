@@ -160,7 +160,7 @@ const refine2dUsage =
 const flattenUsage =
   'flatten IN -o OUT.obj [--boundary circle|free|corners] [--corner-angle DEG] [--no-flips] [--json]';
 const remeshUsage =
-  'remesh IN -o OUT [--min-angle D] [--edge-length L | --edge-length-rel R] [--feature-angle D] [--chord-tol T] [--json] [--no-hausdorff]';
+  'remesh IN -o OUT [--min-angle D] [--edge-length L | --edge-length-rel R] [--feature-angle D] [--chord-tol T] [--json] [--no-hausdorff] [--no-optimize]';
 
 const infoUsage = 'info FILE [--json] [--weld TOL] [--format NAME]';
 
@@ -272,7 +272,7 @@ const commands: Record<string, Command> = {
     usage: remeshUsage,
     summary: 'remesh a surface: conformal flattening per patch, planar Delaunay refinement, lift',
     valueFlags: ['-o', '--min-angle', '--edge-length', '--edge-length-rel', '--feature-angle', '--chord-tol'],
-    switches: ['--json', '--no-hausdorff'],
+    switches: ['--json', '--no-hausdorff', '--no-optimize'],
     async run(args, api) {
       if (args.positional.length !== 1) throw new ConformeshError('InvalidArgument', 'api', 'remesh needs exactly one input file');
       if (args.flags.has('--edge-length') && args.flags.has('--edge-length-rel'))
@@ -284,6 +284,7 @@ const commands: Record<string, Command> = {
         featureAngle: numberFlag(args, '--feature-angle', 40),
         chordTolerance: numberFlag(args, '--chord-tol', -1),
         computeHausdorff: !args.flags.has('--no-hausdorff'),
+        optimize: !args.flags.has('--no-optimize'),
       };
       const path = args.positional[0]!;
       const mesh = api.readMesh(await readFileBytes(path), { fileName: path });
@@ -313,6 +314,8 @@ const commands: Record<string, Command> = {
           num('pctBelow20', R.pctBelow20),
           num('pctBelow26', R.pctBelow26),
           num('pctBelow30', R.pctBelow30),
+          num('pctMinAtLeast40', R.pctMinAtLeast40),
+          num('pctMinAtLeast50', R.pctMinAtLeast50),
           num('minAngleOutsideExempt', R.minAngleOutsideExempt),
           num('trianglesBelowBoundOutsideExempt', R.trianglesBelowBoundOutsideExempt),
           `"exemptCorners":[${corners.join(',')}]`,
@@ -327,9 +330,11 @@ const commands: Record<string, Command> = {
           `"flowIterations":[${R.flowIterations.join(',')}]`,
           num('conformingRounds', R.conformingRounds),
           num('certificateRounds', R.certificateRounds),
+          num('optimizeMoves', R.optimizeMoves),
+          num('optimizeFlips', R.optimizeFlips),
           `"warnings":${JSON.stringify(R.warnings)}`,
           `"topologyPreserved":${R.topologyPreserved ? 'true' : 'false'}`,
-          `"seconds":{${(['validate', 'segment', 'flatten', 'curveMesh', 'refine', 'lift', 'stitch', 'report', 'total'] as const)
+          `"seconds":{${(['validate', 'segment', 'flatten', 'curveMesh', 'refine', 'lift', 'optimize', 'stitch', 'report', 'total'] as const)
             .map((k) => num(k, t[k]))
             .join(',')}}`,
         ];
@@ -342,6 +347,7 @@ const commands: Record<string, Command> = {
         row('angle min / mean-min / max', `${fixed(R.minAngle, 2)} / ${fixed(R.meanMinAngle, 2)} / ${fixed(R.maxAngle, 2)} deg`);
         row('min angle outside exempt', `${fixed(R.minAngleOutsideExempt, 2)} deg (${R.trianglesBelowBoundOutsideExempt} triangles below the bound)`);
         row('below 20 / 26 / 30 deg', `${fixed(R.pctBelow20, 3)} / ${fixed(R.pctBelow26, 3)} / ${fixed(R.pctBelow30, 3)} %`);
+        row('min angle >= 40 / 50 deg', `${fixed(R.pctMinAtLeast40, 2)} / ${fixed(R.pctMinAtLeast50, 2)} %`);
         row('exempt corners', `${R.exemptCorners.length}`);
         row('Hausdorff / bbox diagonal', `${formatG(R.hausdorffRel, 3)} (max vertex distance ${formatG(R.maxDistanceToInputRel, 2)})`);
         row('mean edge length', `${formatG(R.meanEdgeLength, 4)} (target ${formatG(R.targetEdgeLength, 4)})`);
@@ -352,7 +358,8 @@ const commands: Record<string, Command> = {
         row(
           'seconds',
           `validate ${fixed(t.validate, 3)}, segment ${fixed(t.segment, 3)}, flatten ${fixed(t.flatten, 3)}, curves ${fixed(t.curveMesh, 3)}, ` +
-            `refine ${fixed(t.refine, 3)}, lift ${fixed(t.lift, 3)}, stitch ${fixed(t.stitch, 3)}, report ${fixed(t.report, 3)}, total ${fixed(t.total, 3)}`,
+            `refine ${fixed(t.refine, 3)}, lift ${fixed(t.lift, 3)}, optimize ${fixed(t.optimize, 3)}, stitch ${fixed(t.stitch, 3)}, ` +
+            `report ${fixed(t.report, 3)}, total ${fixed(t.total, 3)}`,
         );
       }
       return 0;

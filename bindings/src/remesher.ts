@@ -194,7 +194,9 @@ export function createRemesher(options: RemesherOptions = {}): Remesher {
       } else {
         throw new Error('createWorker returned an object without addEventListener or on');
       }
-      if (options.init) worker.postMessage({ id: 0, type: 'init', options: options.init } satisfies WorkerRequest);
+      // load and compile the module now, not inside the first call (keeps a replacement worker's
+      // start-up out of the next call after a cancel, and off the main thread's frames then)
+      worker.postMessage({ id: 0, type: 'init', options: options.init ?? {} } satisfies WorkerRequest);
       return worker;
     });
     return w;
@@ -246,8 +248,9 @@ export function createRemesher(options: RemesherOptions = {}): Remesher {
           } else {
             const slot = slots.find((s) => s.job === job);
             if (!slot) return;
-            kill(slot); // the WASM call cannot be interrupted: drop the worker, start a new one later
+            kill(slot); // the WASM call cannot be interrupted: drop the worker and start a fresh one now
             slot.job = undefined;
+            if (!terminated) slot.worker = startWorker(slot);
           }
           call.signal!.removeEventListener('abort', job.onAbort!);
           reject(cancelled());

@@ -289,6 +289,12 @@ export interface RemeshOptions {
   maxScaleRatio?: number;
   /** Rounds of the 3D angle certificate; default 3. */
   maxCertificateRounds?: number;
+  /** Optimize each patch after refinement (ODT moves and flips judged in 3D; default true). */
+  optimize?: boolean;
+  /** Optimization passes (hard cap, default 6). */
+  optimizeIterations?: number;
+  /** Stop when a pass gains less than this fraction of the mean min angle (default 1e-3). */
+  optimizeTolerance?: number;
   /** Sampled two-sided Hausdorff distance in the report; default true. */
   computeHausdorff?: boolean;
   hausdorffSamples?: number;
@@ -318,6 +324,9 @@ export interface RemeshReport {
   pctBelow20: number;
   pctBelow26: number;
   pctBelow30: number;
+  /** % of triangles whose smallest angle is ≥ 40°, ≥ 50°. */
+  pctMinAtLeast40: number;
+  pctMinAtLeast50: number;
   minAngleOutsideExempt: number;
   trianglesBelowBoundOutsideExempt: number;
   exemptCorners: ExemptCorner[];
@@ -338,6 +347,9 @@ export interface RemeshReport {
   patchSplitsForScale: number;
   conformingRounds: number;
   certificateRounds: number;
+  /** Vertex moves and edge flips accepted by the optimization. */
+  optimizeMoves: number;
+  optimizeFlips: number;
   topologyPreserved: boolean;
   seconds: {
     validate: number;
@@ -346,6 +358,7 @@ export interface RemeshReport {
     curveMesh: number;
     refine: number;
     lift: number;
+    optimize: number;
     stitch: number;
     report: number;
     total: number;

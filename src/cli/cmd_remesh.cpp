@@ -21,6 +21,8 @@ std::string reportJson(const RemeshReport& r) {
   num("pctBelow20", r.pctBelow20);
   num("pctBelow26", r.pctBelow26);
   num("pctBelow30", r.pctBelow30);
+  num("pctMinAtLeast40", r.pctMinAtLeast40);
+  num("pctMinAtLeast50", r.pctMinAtLeast50);
   num("minAngleOutsideExempt", r.minAngleOutsideExempt);
   num("trianglesBelowBoundOutsideExempt", double(r.trianglesBelowBoundOutsideExempt));
   s += "\"exemptCorners\":[";
@@ -45,6 +47,8 @@ std::string reportJson(const RemeshReport& r) {
   s += "],";
   num("conformingRounds", r.conformingRounds);
   num("certificateRounds", r.certificateRounds);
+  num("optimizeMoves", double(r.optimizeMoves));
+  num("optimizeFlips", double(r.optimizeFlips));
   s += "\"warnings\":[";
   for (size_t i = 0; i < r.warnings.size(); ++i) s += (i ? "," : "") + jsonString(r.warnings[i]);
   s += "],";
@@ -52,7 +56,7 @@ std::string reportJson(const RemeshReport& r) {
   const auto& t = r.seconds;
   s += "\"seconds\":{\"validate\":" + jsonNumber(t.validate) + ",\"segment\":" + jsonNumber(t.segment) +
        ",\"flatten\":" + jsonNumber(t.flatten) + ",\"curveMesh\":" + jsonNumber(t.curveMesh) +
-       ",\"refine\":" + jsonNumber(t.refine) + ",\"lift\":" + jsonNumber(t.lift) + ",\"stitch\":" +
+       ",\"refine\":" + jsonNumber(t.refine) + ",\"lift\":" + jsonNumber(t.lift) + ",\"optimize\":" + jsonNumber(t.optimize) + ",\"stitch\":" +
        jsonNumber(t.stitch) + ",\"report\":" + jsonNumber(t.report) + ",\"total\":" + jsonNumber(t.total) + "}}";
   return s;
 }
@@ -64,6 +68,7 @@ void printTable(const RemeshReport& r) {
   std::printf("%-28s %.2f deg (%zu triangles below the bound)\n", "min angle outside exempt", r.minAngleOutsideExempt,
               r.trianglesBelowBoundOutsideExempt);
   std::printf("%-28s %.3f / %.3f / %.3f %%\n", "below 20 / 26 / 30 deg", r.pctBelow20, r.pctBelow26, r.pctBelow30);
+  std::printf("%-28s %.2f / %.2f %%\n", "min angle >= 40 / 50 deg", r.pctMinAtLeast40, r.pctMinAtLeast50);
   std::printf("%-28s %zu\n", "exempt corners", r.exemptCorners.size());
   std::printf("%-28s %.3g (max vertex distance %.2g)\n", "Hausdorff / bbox diagonal", r.hausdorffRel,
               r.maxDistanceToInputRel);
@@ -73,9 +78,10 @@ void printTable(const RemeshReport& r) {
   std::printf("%-28s %s\n", "topology preserved", r.topologyPreserved ? "yes" : "NO");
   for (const auto& w : r.warnings) std::printf("%-28s %s\n", "warning", w.c_str());
   const auto& t = r.seconds;
-  std::printf("%-28s validate %.3f, segment %.3f, flatten %.3f, curves %.3f, refine %.3f, lift %.3f, stitch %.3f, "
-              "report %.3f, total %.3f\n",
-              "seconds", t.validate, t.segment, t.flatten, t.curveMesh, t.refine, t.lift, t.stitch, t.report, t.total);
+  std::printf("%-28s validate %.3f, segment %.3f, flatten %.3f, curves %.3f, refine %.3f, lift %.3f, optimize %.3f, "
+              "stitch %.3f, report %.3f, total %.3f\n",
+              "seconds", t.validate, t.segment, t.flatten, t.curveMesh, t.refine, t.lift, t.optimize, t.stitch, t.report,
+              t.total);
 }
 
 int run(const std::vector<std::string>& argv) {
@@ -84,7 +90,7 @@ int run(const std::vector<std::string>& argv) {
   try {
     Args args = parseArgs(argv,
                           {"-o", "--min-angle", "--edge-length", "--edge-length-rel", "--feature-angle", "--chord-tol"},
-                          {"--json", "--no-hausdorff"});
+                          {"--json", "--no-hausdorff", "--no-optimize"});
     if (args.positional.size() != 1) fail(Code::InvalidArgument, Stage::Api, "remesh needs exactly one input file");
     if (args.has("--edge-length") && args.has("--edge-length-rel"))
       fail(Code::InvalidArgument, Stage::Api, "give --edge-length or --edge-length-rel, not both");
@@ -95,6 +101,7 @@ int run(const std::vector<std::string>& argv) {
     opt.featureAngleDeg = args.number("--feature-angle", opt.featureAngleDeg);
     opt.chordTolerance = args.number("--chord-tol", opt.chordTolerance);
     opt.computeHausdorff = !args.has("--no-hausdorff");
+    opt.optimize = !args.has("--no-optimize");
     const std::string& inPath = args.positional[0];
     ReadOptions ro;
     ro.fileName = inPath;
@@ -118,7 +125,7 @@ int run(const std::vector<std::string>& argv) {
 
 const CommandRegistrar registrar({"remesh",
                                   "remesh IN -o OUT [--min-angle D] [--edge-length L | --edge-length-rel R] "
-                                  "[--feature-angle D] [--chord-tol T] [--json] [--no-hausdorff]",
+                                  "[--feature-angle D] [--chord-tol T] [--json] [--no-hausdorff] [--no-optimize]",
                                   "remesh a surface: conformal flattening per patch, planar Delaunay refinement, lift",
                                   run});
 

@@ -19,6 +19,7 @@
 #include "mesh/validate.h"
 #include "planar/refine.h"
 #include "quality/metrics.h"
+#include "remesh/optimize.h"
 
 namespace conformesh {
 namespace {
@@ -60,6 +61,7 @@ struct PatchWork {
   uint64_t builtAt = 0;
   bool needsMesh = true;  // full refinement (first time, or the certificate asked for spots)
   bool dirty = false;     // a neighbour added curve samples on this patch's boundary
+  bool optimized = false;  // the latest meshing went through optimizePatch
 
 };
 
@@ -84,6 +86,7 @@ class Pipeline {
   void indexSamples();
   std::vector<BoundaryPoint> boundaryPoints(const PatchWork& w) const;
   void meshPatch(uint32_t p, bool splitSegments = true);
+  void optimizeMesh(uint32_t p);
   bool liftPoint(const PatchWork& w, double x, double y, PullbackPoint& q) const;
   uint32_t addSplitSample(const PatchWork& w, const std::vector<BoundaryPoint>& bp, uint32_t s, double t);
   double curveKey(uint32_t c, uint32_t sample) const;
@@ -103,6 +106,7 @@ class Pipeline {
   uint64_t stamp_ = 0;
   size_t scaleSplits_ = 0;
   double liftSeconds_ = 0;
+  double optimizeSeconds_ = 0;
   RemeshReport rep_;
 };
 
@@ -410,6 +414,7 @@ void Pipeline::meshPatch(uint32_t p, bool splitSegments) {
   w.builtAt = ++stamp_;
   w.dirty = false;
   w.needsMesh = false;
+  w.optimized = false;
   std::vector<BoundaryPoint> bp = boundaryPoints(w);
   // A small patch bounded by short curves can have fewer than 3 boundary samples, or only
   // collinear ones (two curves between the same two corners): add a sample in the middle of the
@@ -517,6 +522,37 @@ void Pipeline::meshPatch(uint32_t p, bool splitSegments) {
   liftSeconds_ += elapsed(tl);
 }
 
+// Optimize a patch's latest meshing in its plane, judged in 3D (remesh/optimize.h).
+void Pipeline::optimizeMesh(uint32_t p) {
+  PatchWork& w = *work_[p];
+  w.optimized = true;
+  if (!opt_.optimize || opt_.optimizeIterations == 0) return;
+  auto t0 = std::chrono::steady_clock::now();
+  const size_t nv = w.planarPoints.size() / 2;
+  std::vector<F::Vec3> pos(nv);
+  std::vector<uint8_t> fixed(nv, 0);
+  for (size_t v = 0; v < nv; ++v) {
+    fixed[v] = w.localToGlobal[v] != kNone;
+    pos[v] = fixed[v] ? cm_.samples[w.localToGlobal[v]].position : w.interiorPositions[v];
+  }
+  optimization::OptimizeOptions oo;
+  oo.minAngleDeg = opt_.minAngleDeg;
+  oo.maxIterations = opt_.optimizeIterations;
+  oo.tolerance = opt_.optimizeTolerance;
+  auto lift = [&](double x, double y, F::Vec3& out) {
+    PullbackPoint q;
+    if (!liftPoint(w, x, y, q)) return false;
+    out = {q.position[0], q.position[1], q.position[2]};
+    return true;
+  };
+  optimization::OptimizeStats st = optimization::optimizePatch(w.planarPoints, w.triangles, pos, fixed, lift, oo);
+  for (size_t v = 0; v < nv; ++v)
+    if (!fixed[v]) w.interiorPositions[v] = pos[v];
+  rep_.optimizeMoves += st.moves;
+  rep_.optimizeFlips += st.flips;
+  optimizeSeconds_ += elapsed(t0);
+}
+
 MeshBuffers Pipeline::stitch(std::vector<uint32_t>& trianglePatch) const {
   MeshBuffers out;
   const size_t nS = cm_.samples.size();
@@ -564,6 +600,9 @@ RemeshResult Pipeline::run(const MeshBuffers& input) {
   if (!(opt_.minAngleDeg >= 0 && opt_.minAngleDeg <= 34))
     fail(Code::InvalidArgument, Stage::Api, "minAngle must be in [0, 34] degrees");
   if (!(opt_.maxScaleRatio > 1)) fail(Code::InvalidArgument, Stage::Api, "maxScaleRatio must be > 1");
+  if (opt_.optimizeIterations < 0 || opt_.optimizeIterations > 1000)
+    fail(Code::InvalidArgument, Stage::Api, "optimizeIterations must be in [0, 1000]");
+  if (!(opt_.optimizeTolerance >= 0)) fail(Code::InvalidArgument, Stage::Api, "optimizeTolerance must be >= 0");
   checkCancel(Stage::Validate, 0);
   ValidatedMesh vm = validate(input);
   const MeshBuffers& in = vm.buffers;
@@ -643,6 +682,11 @@ RemeshResult Pipeline::run(const MeshBuffers& input) {
         rep_.warnings.push_back("patch " + std::to_string(p) + ": refined without boundary splits after " +
                                 std::to_string(kConformingRounds) + " conforming rounds");
       }
+    for (uint32_t p = 0; p < work_.size(); ++p)
+      if (!work_[p]->optimized) {
+        optimizeMesh(p);
+        checkCancel(Stage::Refine, 1.0);
+      }
     rep_.conformingRounds = std::max(rep_.conformingRounds, round);
     rep_.seconds.refine += elapsed(t0);
     out = stitch(triPatch);
@@ -708,7 +752,8 @@ RemeshResult Pipeline::run(const MeshBuffers& input) {
   triPatch = std::move(bestTriPatch);
   cm_.curveSamples = std::move(bestCurveSamples);
   rep_.seconds.lift = liftSeconds_;
-  rep_.seconds.refine -= liftSeconds_;
+  rep_.seconds.refine -= liftSeconds_ + optimizeSeconds_;
+  rep_.seconds.optimize = optimizeSeconds_;
   rep_.seconds.stitch = elapsed(t0);
 
   // report
@@ -721,6 +766,13 @@ RemeshResult Pipeline::run(const MeshBuffers& input) {
   rep_.pctBelow20 = as.pctBelow20;
   rep_.pctBelow26 = as.pctBelow26;
   rep_.pctBelow30 = as.pctBelow30;
+  if (as.triangles > 0) {
+    size_t at40 = 0, at50 = 0;
+    for (int b = 8; b < 13; ++b) at40 += as.minAngleHistogram[b];
+    for (int b = 10; b < 13; ++b) at50 += as.minAngleHistogram[b];
+    rep_.pctMinAtLeast40 = 100.0 * double(at40) / double(as.triangles);
+    rep_.pctMinAtLeast50 = 100.0 * double(at50) / double(as.triangles);
+  }
   rep_.minAngleOutsideExempt = 180;
   for (size_t t = 0; t < out.triangleCount(); ++t) {
     const uint32_t* tv = &out.triangles[3 * t];

@@ -48,6 +48,12 @@ struct RemeshOptions {
   //! Cap on the rounds of the 3D angle certificate (re-meshing patches with smaller planar size
   //! where a lifted triangle is below the bound).
   int maxCertificateRounds = 3;
+  //! Optimize every patch's mesh after refinement (issue 9): ODT vertex moves and flips in the
+  //! conformal plane, accepted only when the lifted 3D triangles get better and the angle bound
+  //! holds (remesh/optimize.h). Raises the mean per-triangle min angle; never lowers the worst.
+  bool optimize = true;
+  int optimizeIterations = 6;       //!< passes (hard cap), >= 0
+  double optimizeTolerance = 1e-3;  //!< stop when a pass gains less than this fraction of the mean min angle
   //! Two-sided Hausdorff distance in the report (sampled; costs time on big meshes).
   bool computeHausdorff = true;
   size_t hausdorffSamples = 50000;
@@ -63,8 +69,8 @@ struct ExemptCorner {
 };
 
 struct StageSeconds {
-  double validate = 0, segment = 0, curveMesh = 0, flatten = 0, refine = 0, lift = 0, stitch = 0,
-         report = 0, total = 0;
+  double validate = 0, segment = 0, curveMesh = 0, flatten = 0, refine = 0, lift = 0, optimize = 0,
+         stitch = 0, report = 0, total = 0;
 };
 
 struct RemeshReport {
@@ -72,6 +78,8 @@ struct RemeshReport {
   size_t triangles = 0, vertices = 0;
   double minAngle = 0, maxAngle = 0, meanMinAngle = 0;  //!< degrees, all triangles
   double pctBelow20 = 0, pctBelow26 = 0, pctBelow30 = 0;
+  double pctMinAtLeast40 = 0, pctMinAtLeast50 = 0;  //!< % of triangles whose min angle is >= 40°, >= 50°
+  size_t optimizeMoves = 0, optimizeFlips = 0;       //!< accepted by the optimization
   double minAngleOutsideExempt = 0;  //!< smallest angle over triangles not touching an exempt corner
   size_t trianglesBelowBoundOutsideExempt = 0;
   std::vector<ExemptCorner> exemptCorners;

@@ -61,7 +61,7 @@ let selected: number | undefined;
 let running: AbortController | undefined;
 let loadSeq = 0;
 const lastLoad = { analysisMs: NaN, buildMs: NaN, firstFrameMs: NaN };
-const lastRemesh = { maxFrameGapMs: NaN, frames: 0, seconds: NaN, applyMs: NaN };
+const lastRemesh = { maxFrameGapMs: NaN, maxFrameGapEndMs: NaN, frames: 0, seconds: NaN, applyMs: NaN };
 
 const params: Params = { minAngle: 30, edgeLength: 0.02, featureAngle: 40, chordTolerance: 0.001, boundary: 'corners' };
 const toggles = { features: true, patches: true, inputWire: false, layout: true, refined: true, remeshWire: true };
@@ -582,7 +582,7 @@ async function remesh(): Promise<void> {
     qualityTable();
     histogram();
     legend();
-    Object.assign(lastRemesh, { maxFrameGapMs: gap.maxGap, frames: gap.frames, seconds, applyMs: performance.now() - t1 });
+    Object.assign(lastRemesh, { maxFrameGapMs: gap.maxGap, maxFrameGapEndMs: gap.maxGapAt - t0, frames: gap.frames, seconds, applyMs: performance.now() - t1 });
     setState('remeshed');
   } catch (e) {
     if (seq !== loadSeq) return;

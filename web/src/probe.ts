@@ -4,6 +4,8 @@
 
 export class FrameProbe {
   maxGap = 0;
+  /** performance.now() at the end of the longest gap. */
+  maxGapAt = 0;
   frames = 0;
   private last = 0;
 
@@ -11,7 +13,10 @@ export class FrameProbe {
     const tick = () => {
       // performance.now(), not the rAF timestamp: the frame time of a late frame can predate the block
       const t = performance.now();
-      if (this.last > 0) this.maxGap = Math.max(this.maxGap, t - this.last);
+      if (this.last > 0 && t - this.last > this.maxGap) {
+        this.maxGap = t - this.last;
+        this.maxGapAt = t;
+      }
       this.last = t;
       this.frames++;
       requestAnimationFrame(tick);
@@ -21,11 +26,12 @@ export class FrameProbe {
 
   reset(): void {
     this.maxGap = 0;
+    this.maxGapAt = 0;
     this.frames = 0;
     this.last = performance.now();
   }
 
-  read(): { maxGap: number; frames: number } {
-    return { maxGap: this.maxGap, frames: this.frames };
+  read(): { maxGap: number; maxGapAt: number; frames: number } {
+    return { maxGap: this.maxGap, maxGapAt: this.maxGapAt, frames: this.frames };
   }
 }

@@ -1,0 +1,241 @@
+#include "remesh/optimize.h"
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <unordered_map>
+
+namespace conformesh::optimization {
+namespace {
+
+using features::Vec3;
+constexpr double kRadToDeg = 57.295779513082320876798;
+constexpr uint32_t kNoTri = 0xffffffffu;
+
+double orient(const double* a, const double* b, const double* c) {
+  return (b[0] - a[0]) * (c[1] - a[1]) - (b[1] - a[1]) * (c[0] - a[0]);
+}
+
+// Circumcenter of a planar triangle; false when it is degenerate.
+bool circumcenter(const double* a, const double* b, const double* c, double out[2]) {
+  const double bx = b[0] - a[0], by = b[1] - a[1], cx = c[0] - a[0], cy = c[1] - a[1];
+  const double d = 2 * (bx * cy - by * cx);
+  if (!(std::abs(d) > 0)) return false;
+  const double b2 = bx * bx + by * by, c2 = cx * cx + cy * cy;
+  out[0] = a[0] + (cy * b2 - by * c2) / d;
+  out[1] = a[1] + (bx * c2 - cx * b2) / d;
+  return std::isfinite(out[0]) && std::isfinite(out[1]);
+}
+
+struct Mesh {
+  std::vector<double>& xy;
+  std::vector<uint32_t>& tri;
+  std::vector<Vec3>& pos;
+  const std::vector<uint8_t>& fixed;
+  std::vector<uint32_t> starStart, starTri;  // CSR vertex -> triangles
+
+  const double* p(uint32_t v) const { return &xy[2 * size_t(v)]; }
+  double triMin(uint32_t t) const {
+    const uint32_t* v = &tri[3 * size_t(t)];
+    return minAngleDeg3(pos[v[0]], pos[v[1]], pos[v[2]]);
+  }
+  void buildStars() {
+    const size_t nv = xy.size() / 2, nt = tri.size() / 3;
+    starStart.assign(nv + 1, 0);
+    for (uint32_t v : tri) ++starStart[v + 1];
+    for (size_t i = 0; i < nv; ++i) starStart[i + 1] += starStart[i];
+    starTri.assign(tri.size(), 0);
+    std::vector<uint32_t> fill(starStart.begin(), starStart.end() - 1);
+    for (size_t t = 0; t < nt; ++t)
+      for (int c = 0; c < 3; ++c) starTri[fill[tri[3 * t + c]]++] = uint32_t(t);
+  }
+};
+
+// Try moving v to (x, y): accepted when no star triangle inverts in the plane and the star's 3D
+// min angles improve under the bound rule (see the header). Returns whether it moved.
+bool tryMove(Mesh& m, uint32_t v, double x, double y, const LiftFn& lift, double bound) {
+  const uint32_t* s = &m.starTri[m.starStart[v]];
+  const size_t n = m.starStart[v + 1] - m.starStart[v];
+  double oldMin = 180, oldSum = 0;
+  for (size_t i = 0; i < n; ++i) {
+    double a = m.triMin(s[i]);
+    oldMin = std::min(oldMin, a);
+    oldSum += a;
+  }
+  const double q[2] = {x, y};
+  for (size_t i = 0; i < n; ++i) {
+    const uint32_t* t = &m.tri[3 * size_t(s[i])];
+    const double* c[3];
+    for (int k = 0; k < 3; ++k) c[k] = t[k] == v ? q : m.p(t[k]);
+    // strictly positive, relative to the triangle's size (no sliver in the plane either)
+    const double l2 = std::max({std::pow(c[1][0] - c[0][0], 2) + std::pow(c[1][1] - c[0][1], 2),
+                                std::pow(c[2][0] - c[1][0], 2) + std::pow(c[2][1] - c[1][1], 2),
+                                std::pow(c[0][0] - c[2][0], 2) + std::pow(c[0][1] - c[2][1], 2)});
+    if (!(orient(c[0], c[1], c[2]) > 1e-6 * l2)) return false;
+  }
+  Vec3 P;
+  if (!lift(x, y, P)) return false;
+  const Vec3 keep = m.pos[v];
+  m.pos[v] = P;
+  double newMin = 180, newSum = 0;
+  for (size_t i = 0; i < n; ++i) {
+    double a = m.triMin(s[i]);
+    newMin = std::min(newMin, a);
+    newSum += a;
+  }
+  const double floor = oldMin >= bound ? bound : oldMin;
+  const bool better = oldMin < bound ? newMin > oldMin + 1e-9 : newSum > oldSum + 1e-9 * n;
+  if (newMin < floor || !better) {
+    m.pos[v] = keep;
+    return false;
+  }
+  m.xy[2 * size_t(v)] = x;
+  m.xy[2 * size_t(v) + 1] = y;
+  return true;
+}
+
+// ODT position of v: the mean of its star triangles' circumcenters weighted by their areas.
+bool odtTarget(const Mesh& m, uint32_t v, double out[2]) {
+  double sx = 0, sy = 0, sw = 0;
+  for (uint32_t k = m.starStart[v]; k < m.starStart[v + 1]; ++k) {
+    const uint32_t* t = &m.tri[3 * size_t(m.starTri[k])];
+    const double *a = m.p(t[0]), *b = m.p(t[1]), *c = m.p(t[2]);
+    double cc[2];
+    if (!circumcenter(a, b, c, cc)) return false;
+    const double w = 0.5 * orient(a, b, c);
+    sx += w * cc[0];
+    sy += w * cc[1];
+    sw += w;
+  }
+  if (!(sw > 0)) return false;
+  out[0] = sx / sw;
+  out[1] = sy / sw;
+  return true;
+}
+
+// Centroid of the vertices of v's star (v itself excluded; each neighbour counted once per
+// triangle, which weights it by the triangles it shares with v).
+bool neighbourCentroid(const Mesh& m, uint32_t v, double out[2]) {
+  double sx = 0, sy = 0;
+  int n = 0;
+  for (uint32_t k = m.starStart[v]; k < m.starStart[v + 1]; ++k) {
+    const uint32_t* t = &m.tri[3 * size_t(m.starTri[k])];
+    for (int c = 0; c < 3; ++c)
+      if (t[c] != v) sx += m.p(t[c])[0], sy += m.p(t[c])[1], ++n;
+  }
+  if (n == 0) return false;
+  out[0] = sx / n;
+  out[1] = sy / n;
+  return true;
+}
+
+// One pass of flips: an interior edge flips when its quad is strictly convex in the plane and
+// the smaller 3D min angle of its two triangles gets larger. Returns the number of flips.
+size_t flipPass(Mesh& m) {
+  auto key = [](uint32_t a, uint32_t b) { return (uint64_t(std::min(a, b)) << 32) | std::max(a, b); };
+  std::unordered_map<uint64_t, std::array<uint32_t, 2>> edgeTris;
+  edgeTris.reserve(m.tri.size());
+  const uint32_t nt = uint32_t(m.tri.size() / 3);
+  for (uint32_t t = 0; t < nt; ++t)
+    for (int c = 0; c < 3; ++c) {
+      auto& e = edgeTris.try_emplace(key(m.tri[3 * t + c], m.tri[3 * t + (c + 1) % 3]), std::array<uint32_t, 2>{kNoTri, kNoTri}).first->second;
+      (e[0] == kNoTri ? e[0] : e[1]) = t;
+    }
+  std::vector<uint64_t> edges;
+  edges.reserve(edgeTris.size());
+  for (const auto& [k, e] : edgeTris)
+    if (e[1] != kNoTri) edges.push_back(k);
+  std::sort(edges.begin(), edges.end());  // deterministic order
+  size_t flips = 0;
+  for (uint64_t k : edges) {
+    auto it = edgeTris.find(k);
+    if (it == edgeTris.end() || it->second[1] == kNoTri) continue;
+    const uint32_t t0 = it->second[0], t1 = it->second[1];
+    const uint32_t a = uint32_t(k >> 32), b = uint32_t(k & 0xffffffffu);
+    auto opposite = [&](uint32_t t) {
+      for (int c = 0; c < 3; ++c)
+        if (m.tri[3 * t + c] != a && m.tri[3 * t + c] != b) return m.tri[3 * t + c];
+      return kNoTri;
+    };
+    const uint32_t c0 = opposite(t0), c1 = opposite(t1);
+    if (c0 == kNoTri || c1 == kNoTri || c0 == c1) continue;
+    // orient so that t0 = (x, y, c0) counter-clockwise with edge x -> y
+    uint32_t x = a, y = b;
+    for (int c = 0; c < 3; ++c)
+      if (m.tri[3 * t0 + c] == a && m.tri[3 * t0 + (c + 1) % 3] == b) x = a, y = b;
+      else if (m.tri[3 * t0 + c] == b && m.tri[3 * t0 + (c + 1) % 3] == a) x = b, y = a;
+    // new triangles (c0, x, c1) and (c1, y, c0): both must be strictly positive in the plane
+    const double l2 = std::pow(m.p(c0)[0] - m.p(c1)[0], 2) + std::pow(m.p(c0)[1] - m.p(c1)[1], 2);
+    if (!(orient(m.p(c0), m.p(x), m.p(c1)) > 1e-6 * l2) || !(orient(m.p(c1), m.p(y), m.p(c0)) > 1e-6 * l2)) continue;
+    const double before = std::min(m.triMin(t0), m.triMin(t1));
+    const double after = std::min(minAngleDeg3(m.pos[c0], m.pos[x], m.pos[c1]), minAngleDeg3(m.pos[c1], m.pos[y], m.pos[c0]));
+    if (!(after > before + 1e-6)) continue;
+    // the edges (x, c1) of t1 and (y, c0) of t0 change sides
+    m.tri[3 * size_t(t0)] = c0, m.tri[3 * size_t(t0) + 1] = x, m.tri[3 * size_t(t0) + 2] = c1;
+    m.tri[3 * size_t(t1)] = c1, m.tri[3 * size_t(t1) + 1] = y, m.tri[3 * size_t(t1) + 2] = c0;
+    edgeTris.erase(it);
+    edgeTris[key(c0, c1)] = {t0, t1};
+    auto swapTri = [&](uint32_t u, uint32_t w, uint32_t from, uint32_t to) {
+      auto& e = edgeTris[key(u, w)];
+      for (auto& f : e)
+        if (f == from) f = to;
+    };
+    swapTri(x, c1, t1, t0);
+    swapTri(y, c0, t0, t1);
+    ++flips;
+  }
+  return flips;
+}
+
+double meanMin(const Mesh& m) {
+  const size_t nt = m.tri.size() / 3;
+  if (nt == 0) return 0;
+  double s = 0;
+  for (size_t t = 0; t < nt; ++t) s += m.triMin(uint32_t(t));
+  return s / double(nt);
+}
+
+}  // namespace
+
+double minAngleDeg3(const Vec3& a, const Vec3& b, const Vec3& c) {
+  const double A = features::angleBetween(b - a, c - a), B = features::angleBetween(c - b, a - b);
+  return std::min({A, B, M_PI - A - B}) * kRadToDeg;
+}
+
+OptimizeStats optimizePatch(std::vector<double>& xy, std::vector<uint32_t>& triangles, std::vector<Vec3>& pos,
+                            const std::vector<uint8_t>& fixed, const LiftFn& lift, const OptimizeOptions& o) {
+  Mesh m{xy, triangles, pos, fixed, {}, {}};
+  OptimizeStats st;
+  st.meanMinAngleBefore = st.meanMinAngleAfter = meanMin(m);
+  const size_t nv = xy.size() / 2;
+  double last = st.meanMinAngleBefore;
+  for (int it = 0; it < o.maxIterations; ++it) {
+    m.buildStars();
+    for (uint32_t v = 0; v < nv; ++v) {
+      if (fixed[v] || m.starStart[v] == m.starStart[v + 1]) continue;
+      const double x = xy[2 * size_t(v)], y = xy[2 * size_t(v) + 1];
+      // the full ODT step, else half of it; then the centroid of the neighbours (Laplacian), which
+      // helps where the ODT position is pulled off by a big star triangle
+      double target[2], lap[2];
+      bool moved = false;
+      if (odtTarget(m, v, target))
+        moved = tryMove(m, v, target[0], target[1], lift, o.minAngleDeg) ||
+                tryMove(m, v, 0.5 * (x + target[0]), 0.5 * (y + target[1]), lift, o.minAngleDeg);
+      if (neighbourCentroid(m, v, lap)) {
+        const double cx = xy[2 * size_t(v)], cy = xy[2 * size_t(v) + 1];
+        moved = tryMove(m, v, lap[0], lap[1], lift, o.minAngleDeg) ||
+                tryMove(m, v, 0.5 * (cx + lap[0]), 0.5 * (cy + lap[1]), lift, o.minAngleDeg) || moved;
+      }
+      st.moves += moved;
+    }
+    st.flips += flipPass(m);
+    st.iterations = it + 1;
+    const double now = meanMin(m);
+    st.meanMinAngleAfter = now;
+    if (now - last < o.tolerance * std::max(last, 1e-9)) break;
+    last = now;
+  }
+  return st;
+}
+
+}  // namespace conformesh::optimization

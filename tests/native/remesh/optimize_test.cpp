@@ -1,0 +1,130 @@
+#include <doctest/doctest.h>
+
+#include <algorithm>
+#include <cmath>
+#include <random>
+#include <set>
+
+#include "remesh/optimize.h"
+
+using namespace conformesh;
+using features::Vec3;
+
+namespace {
+// An n×n grid of the unit square, interior vertices jittered (deterministic), split into
+// triangles along one diagonal: a valid but uneven planar mesh.
+struct Grid {
+  std::vector<double> xy;
+  std::vector<uint32_t> tri;
+  std::vector<uint8_t> fixed;
+};
+Grid jitteredGrid(int n, double jitter) {
+  Grid g;
+  std::mt19937 rng(7);
+  std::uniform_real_distribution<double> u(-jitter, jitter);
+  for (int j = 0; j <= n; ++j)
+    for (int i = 0; i <= n; ++i) {
+      const bool border = i == 0 || j == 0 || i == n || j == n;
+      g.xy.push_back(double(i) / n + (border ? 0.0 : u(rng) / n));
+      g.xy.push_back(double(j) / n + (border ? 0.0 : u(rng) / n));
+      g.fixed.push_back(border);
+    }
+  auto id = [n](int i, int j) { return uint32_t(j * (n + 1) + i); };
+  for (int j = 0; j < n; ++j)
+    for (int i = 0; i < n; ++i) {
+      g.tri.insert(g.tri.end(), {id(i, j), id(i + 1, j), id(i + 1, j + 1)});
+      g.tri.insert(g.tri.end(), {id(i, j), id(i + 1, j + 1), id(i, j + 1)});
+    }
+  return g;
+}
+
+double minAngleOf(const std::vector<uint32_t>& tri, const std::vector<Vec3>& pos, size_t t) {
+  return optimization::minAngleDeg3(pos[tri[3 * t]], pos[tri[3 * t + 1]], pos[tri[3 * t + 2]]);
+}
+
+std::set<std::pair<uint32_t, uint32_t>> boundaryEdges(const std::vector<uint32_t>& tri) {
+  std::multiset<std::pair<uint32_t, uint32_t>> all;
+  for (size_t t = 0; t < tri.size(); t += 3)
+    for (int c = 0; c < 3; ++c) {
+      uint32_t a = tri[t + c], b = tri[t + (c + 1) % 3];
+      all.insert({std::min(a, b), std::max(a, b)});
+    }
+  std::set<std::pair<uint32_t, uint32_t>> out;
+  for (const auto& e : all)
+    if (all.count(e) == 1) out.insert(e);
+  return out;
+}
+
+void checkOptimize(const std::function<Vec3(double, double)>& surface, const char* name) {
+  INFO(name);
+  Grid g = jitteredGrid(16, 0.35);
+  std::vector<Vec3> pos;
+  for (size_t v = 0; v < g.fixed.size(); ++v) pos.push_back(surface(g.xy[2 * v], g.xy[2 * v + 1]));
+  const std::vector<double> xy0 = g.xy;
+  const auto boundary0 = boundaryEdges(g.tri);
+  double before = 0, worstBefore = 180;
+  for (size_t t = 0; t < g.tri.size() / 3; ++t) {
+    before += minAngleOf(g.tri, pos, t);
+    worstBefore = std::min(worstBefore, minAngleOf(g.tri, pos, t));
+  }
+  before /= double(g.tri.size() / 3);
+  optimization::OptimizeOptions o;
+  o.minAngleDeg = 20;
+  auto lift = [&](double x, double y, Vec3& out) {
+    if (x < 0 || y < 0 || x > 1 || y > 1) return false;
+    out = surface(x, y);
+    return true;
+  };
+  auto st = optimization::optimizePatch(g.xy, g.tri, pos, g.fixed, lift, o);
+  const size_t nt = g.tri.size() / 3;
+  double after = 0, worstAfter = 180;
+  for (size_t t = 0; t < nt; ++t) {
+    const uint32_t* v = &g.tri[3 * t];
+    const double* a = &g.xy[2 * v[0]];
+    const double* b = &g.xy[2 * v[1]];
+    const double* c = &g.xy[2 * v[2]];
+    CHECK((b[0] - a[0]) * (c[1] - a[1]) - (b[1] - a[1]) * (c[0] - a[0]) > 0);  // no inverted triangle
+    after += minAngleOf(g.tri, pos, t);
+    worstAfter = std::min(worstAfter, minAngleOf(g.tri, pos, t));
+  }
+  after /= double(nt);
+  MESSAGE(std::string(name) << ": mean min angle " << before << " -> " << after << ", worst " << worstBefore << " -> " << worstAfter
+                << ", " << st.moves << " moves, " << st.flips << " flips, " << st.iterations << " passes");
+  CHECK(after > before + 2.0);                                 // the mean improves markedly
+  CHECK(worstAfter >= std::min(worstBefore, o.minAngleDeg));   // the worst never gets worse than allowed
+  CHECK(st.meanMinAngleAfter == doctest::Approx(after));
+  CHECK(boundaryEdges(g.tri) == boundary0);                     // boundary edges kept
+  for (size_t v = 0; v < g.fixed.size(); ++v) {
+    if (g.fixed[v]) {
+      CHECK(g.xy[2 * v] == xy0[2 * v]);  // fixed vertices never move
+      CHECK(g.xy[2 * v + 1] == xy0[2 * v + 1]);
+    }
+    const Vec3 s = surface(g.xy[2 * v], g.xy[2 * v + 1]);  // every vertex is the lift of its planar point
+    CHECK(std::abs(s.x - pos[v].x) + std::abs(s.y - pos[v].y) + std::abs(s.z - pos[v].z) < 1e-15);
+  }
+  CHECK(st.iterations >= 1);
+  CHECK(st.iterations <= o.maxIterations);
+}
+}  // namespace
+
+TEST_CASE("optimize: a jittered planar grid gets better angles, boundary and fixed vertices untouched") {
+  checkOptimize([](double x, double y) { return Vec3{x, y, 0.0}; }, "plane");
+}
+
+TEST_CASE("optimize: moves are judged by the 3D angles of the lifted triangles (paraboloid)") {
+  checkOptimize([](double x, double y) { return Vec3{x, y, 0.8 * (x * x + y * y)}; }, "paraboloid");
+}
+
+TEST_CASE("optimize: zero passes change nothing") {
+  Grid g = jitteredGrid(6, 0.3);
+  std::vector<Vec3> pos;
+  for (size_t v = 0; v < g.fixed.size(); ++v) pos.push_back({g.xy[2 * v], g.xy[2 * v + 1], 0});
+  const auto xy0 = g.xy;
+  const auto tri0 = g.tri;
+  optimization::OptimizeOptions o;
+  o.maxIterations = 0;
+  auto st = optimization::optimizePatch(g.xy, g.tri, pos, g.fixed, [](double, double, Vec3&) { return false; }, o);
+  CHECK(st.moves == 0);
+  CHECK(g.xy == xy0);
+  CHECK(g.tri == tri0);
+}
