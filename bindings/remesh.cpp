@@ -125,6 +125,7 @@ val remeshJs(val positions, val triangles, val vertexSizing, val featureEdges, v
         int(bindings::numberOption(options, "maxCertificateRounds", o.maxCertificateRounds, st, 0, 100));
     o.computeHausdorff = bindings::boolOption(options, "computeHausdorff", o.computeHausdorff, st);
     o.optimize = bindings::boolOption(options, "optimize", o.optimize, st);
+    o.returnPatches = bindings::boolOption(options, "patches", o.returnPatches, st);
     o.optimizeIterations = int(bindings::numberOption(options, "optimizeIterations", o.optimizeIterations, st, 0, 1000));
     o.optimizeTolerance = bindings::numberOption(options, "optimizeTolerance", o.optimizeTolerance, st, 0);
     o.hausdorffSamples =
@@ -138,6 +139,28 @@ val remeshJs(val positions, val triangles, val vertexSizing, val featureEdges, v
     val out = val::object();
     out.set("mesh", bindings::meshToJs(r.mesh));
     out.set("report", reportToJs(r.report));
+    if (o.returnPatches) {
+      val patches = val::array();
+      for (size_t p = 0; p < r.patches.size(); ++p) {
+        const RemeshPatch& rp = r.patches[p];
+        val layout = val::object();
+        layout.set("uv", bindings::typedArrayCopy(rp.layoutUv));
+        layout.set("triangles", bindings::typedArrayCopy(rp.layoutTriangles));
+        layout.set("inputFace", bindings::typedArrayCopy(rp.layoutInputFace));
+        layout.set("factor", bindings::typedArrayCopy(rp.layoutFactor));
+        val refined = val::object();
+        refined.set("uv", bindings::typedArrayCopy(rp.uv));
+        refined.set("triangles", bindings::typedArrayCopy(rp.triangles));
+        refined.set("outputVertex", bindings::typedArrayCopy(rp.outputVertex));
+        val e = val::object();
+        e.set("id", double(p));
+        e.set("layout", layout);
+        e.set("refined", refined);
+        patches.call<void>("push", e);
+      }
+      out.set("patches", patches);
+      out.set("patchOfTriangle", bindings::typedArrayCopy(r.patchOfTriangle));
+    }
     return out;
   });
 }

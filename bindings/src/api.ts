@@ -182,6 +182,7 @@ const remeshKeys: (keyof RemeshOptions)[] = [
   'optimize',
   'optimizeIterations',
   'optimizeTolerance',
+  'patches',
   'computeHausdorff',
   'hausdorffSamples',
 ];

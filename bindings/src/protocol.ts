@@ -67,7 +67,7 @@ export function transferablesOf(value: unknown): ArrayBuffer[] {
       if (v.buffer instanceof ArrayBuffer) out.add(v.buffer);
     } else if (v instanceof ArrayBuffer) {
       out.add(v);
-    } else if (depth < 2 && typeof v === 'object' && v !== null) {
+    } else if (depth < 4 && typeof v === 'object' && v !== null) {
       for (const x of Array.isArray(v) ? v : Object.values(v)) visit(x, depth + 1);
     }
   };

@@ -291,6 +291,8 @@ export interface RemeshOptions {
   maxCertificateRounds?: number;
   /** Optimize each patch after refinement (ODT moves and flips judged in 3D; default true). */
   optimize?: boolean;
+  /** Return every patch in the plane (RemeshResult.patches, patchOfTriangle), e.g. to draw the flattened domain. Default false. */
+  patches?: boolean;
   /** Optimization passes (hard cap, default 6). */
   optimizeIterations?: number;
   /** Stop when a pass gains less than this fraction of the mean min angle (default 1e-3). */
@@ -366,7 +368,20 @@ export interface RemeshReport {
   warnings: string[];
 }
 
+/** One patch in the plane (with the `patches` option). */
+export interface RemeshPatch {
+  id: number;
+  /** The flattened input patch: planar positions (2 per vertex), its triangles, the input triangle of each, and the log scale factor u per vertex. */
+  layout: { uv: Float64Array; triangles: Uint32Array; inputFace: Uint32Array; factor: Float64Array };
+  /** The refined planar mesh: positions (2 per vertex), triangles (the patch's output triangles, same order) and the output vertex of each planar vertex. */
+  refined: { uv: Float64Array; triangles: Uint32Array; outputVertex: Uint32Array };
+}
+
 export interface RemeshResult {
   mesh: Mesh;
   report: RemeshReport;
+  /** With the `patches` option: every patch in the plane. */
+  patches?: RemeshPatch[];
+  /** With the `patches` option: the patch of every output triangle. */
+  patchOfTriangle?: Uint32Array;
 }

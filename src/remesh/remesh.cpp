@@ -91,6 +91,7 @@ class Pipeline {
   uint32_t addSplitSample(const PatchWork& w, const std::vector<BoundaryPoint>& bp, uint32_t s, double t);
   double curveKey(uint32_t c, uint32_t sample) const;
   MeshBuffers stitch(std::vector<uint32_t>& trianglePatch) const;
+  std::vector<RemeshPatch> patchSnapshot(const MeshBuffers& out) const;
   std::vector<double> cornerWedgeAngles(const F::PatchMesh& pm) const;
 
   const RemeshOptions& opt_;
@@ -578,6 +579,27 @@ MeshBuffers Pipeline::stitch(std::vector<uint32_t>& trianglePatch) const {
   return out;
 }
 
+// Every patch's planar data as stitched into `out` (same vertex numbering as stitch()).
+std::vector<RemeshPatch> Pipeline::patchSnapshot(const MeshBuffers& out) const {
+  std::vector<RemeshPatch> res(work_.size());
+  uint32_t next = uint32_t(cm_.samples.size());
+  for (size_t p = 0; p < work_.size(); ++p) {
+    const PatchWork& w = *work_[p];
+    RemeshPatch& r = res[p];
+    r.layoutUv = w.flat.uv;
+    r.layoutTriangles = w.pm.mesh.triangles;
+    r.layoutInputFace = w.pm.faceInput;
+    r.layoutFactor = w.flat.u;
+    r.uv = w.planarPoints;
+    r.triangles = w.triangles;
+    r.outputVertex.resize(w.localToGlobal.size());
+    for (size_t v = 0; v < w.localToGlobal.size(); ++v)
+      r.outputVertex[v] = w.localToGlobal[v] != kNone ? w.localToGlobal[v] : next++;
+  }
+  if (next != out.vertexCount()) fail(Code::InternalError, Stage::Stitch, "patch snapshot does not match the stitched mesh");
+  return res;
+}
+
 double triangleMinAngle(const MeshBuffers& m, size_t t, double* maxAngle = nullptr) {
   F::Vec3 p[3];
   for (int c = 0; c < 3; ++c) {
@@ -657,6 +679,7 @@ RemeshResult Pipeline::run(const MeshBuffers& input) {
   std::vector<uint32_t> bestTriPatch;
   size_t bestBad = SIZE_MAX;
   std::vector<std::vector<uint32_t>> bestCurveSamples;
+  std::vector<RemeshPatch> bestPatches;
   for (int cert = 0;; ++cert) {
     // Refine every patch that needs it; a refinement that splits a boundary segment adds a
     // curve sample there, which the patches on the other side of that curve must include: they
@@ -719,6 +742,7 @@ RemeshResult Pipeline::run(const MeshBuffers& input) {
       bestOut = out;
       bestTriPatch = triPatch;
       bestCurveSamples = cm_.curveSamples;
+      if (opt_.returnPatches) bestPatches = patchSnapshot(out);
     } else {
       // refining made it worse (a boundary-condition corner whose planar and 3D angles differ
       // cannot be fixed by size): keep the best round
@@ -838,6 +862,12 @@ RemeshResult Pipeline::run(const MeshBuffers& input) {
   rep_.seconds.total = std::chrono::duration<double>(std::chrono::steady_clock::now() - tStart).count();
   res.mesh = std::move(out);
   res.report = rep_;
+  if (opt_.returnPatches) {
+    res.patches = std::move(bestPatches);
+    for (auto& rp : res.patches)
+      for (uint32_t& f : rp.layoutInputFace) f = vm.faceToInput[f];
+    res.patchOfTriangle = triPatch;
+  }
   return res;
 }
 

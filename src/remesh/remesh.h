@@ -54,6 +54,9 @@ struct RemeshOptions {
   bool optimize = true;
   int optimizeIterations = 6;       //!< passes (hard cap), >= 0
   double optimizeTolerance = 1e-3;  //!< stop when a pass gains less than this fraction of the mean min angle
+  //! Return every patch's planar data in RemeshResult::patches (for display: the flattened
+  //! input and the refined planar mesh) and the patch of every output triangle.
+  bool returnPatches = false;
   //! Two-sided Hausdorff distance in the report (sampled; costs time on big meshes).
   bool computeHausdorff = true;
   size_t hausdorffSamples = 50000;
@@ -99,10 +102,23 @@ struct RemeshReport {
   std::vector<std::string> warnings;
 };
 
+//! One patch in the plane (RemeshOptions::returnPatches).
+struct RemeshPatch {
+  std::vector<double> layoutUv;            //!< 2 per vertex: the flattened input patch
+  std::vector<uint32_t> layoutTriangles;   //!< its triangles (the input faces of the patch)
+  std::vector<uint32_t> layoutInputFace;   //!< per layout triangle: its triangle in the input mesh
+  std::vector<double> layoutFactor;        //!< per layout vertex: log scale factor u
+  std::vector<double> uv;                  //!< 2 per vertex: the refined (and optimized) planar mesh
+  std::vector<uint32_t> triangles;         //!< its triangles, in the order of the output triangles of the patch
+  std::vector<uint32_t> outputVertex;      //!< per planar vertex: the output vertex it became
+};
+
 struct RemeshResult {
   Status status;  //!< Ok, or the failure (mesh then empty)
   MeshBuffers mesh;
   RemeshReport report;
+  std::vector<RemeshPatch> patches;        //!< with RemeshOptions::returnPatches
+  std::vector<uint32_t> patchOfTriangle;   //!< with RemeshOptions::returnPatches: patch per output triangle
 };
 
 //! Remesh a triangle mesh. Never throws: failures come back in `status` (codes from the input

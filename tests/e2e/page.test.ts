@@ -190,10 +190,7 @@ describe('demo page in headless Chromium', () => {
       expect(Math.min(...gaps)).toBeLessThan(100);
     });
 
-    // KNOWN FAILURE (issue 7): the remesh result carries no per-patch planar data for the
-    // flattened-domain view. `it.fails` keeps the check running: when it is fixed this turns red
-    // and must be switched back to `it`.
-    it.fails('KNOWN FAILURE (issue 7): the flattened-domain view is drawn after a remesh', async () => {
+    it('the flattened-domain view draws every patch after a remesh', async () => {
       const flatMissing = await page.isVisible('#flat-unavailable');
       expect(flatMissing, `flattened-domain view not drawn: ${await page.textContent('#flat-unavailable')}`).toBe(false);
       const s = await canvasStats('canvas-flat', 'remeshed-flat-view');

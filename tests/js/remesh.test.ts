@@ -137,6 +137,26 @@ describe('remesh in workers', () => {
     expect(events.at(-1)!.fraction).toBe(1);
   });
 
+  it('patches: every patch in the plane, through the worker, consistent with the output mesh', async () => {
+    const r = await remesher.remesh(cube(4), { ...fast, targetEdgeLengthRel: 0.1, patches: true });
+    expect(r.patches?.length).toBe(r.report.patches);
+    const pot = r.patchOfTriangle!;
+    expect(pot.length).toBe(r.mesh.triangles.length / 3);
+    const next = new Array<number>(r.patches!.length).fill(0);
+    for (let t = 0; t < pot.length; ++t) {
+      const p = r.patches![pot[t]!]!;
+      const k = next[pot[t]!]++;
+      for (let c = 0; c < 3; ++c) expect(p.refined.outputVertex[p.refined.triangles[3 * k + c]!]).toBe(r.mesh.triangles[3 * t + c]);
+    }
+    for (const p of r.patches!) {
+      expect(p.layout.uv).toBeInstanceOf(Float64Array);
+      expect(p.layout.uv.length).toBe(2 * p.layout.factor.length);
+      expect(p.layout.triangles.length).toBe(3 * p.layout.inputFace.length);
+    }
+    // without the option, none
+    expect((await remesher.remesh(small, fast)).patches).toBeUndefined();
+  });
+
   it('cancel rejects with Cancelled at once', async () => {
     const ac = new AbortController();
     const t0 = performance.now();

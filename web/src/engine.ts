@@ -146,6 +146,7 @@ export class Engine {
       featureAngle: params.featureAngle,
       chordTolerance: params.chordTolerance * diagonal,
       boundary: params.boundary,
+      patches: true, // the flattened-domain view draws every patch in its plane
     };
   }
 

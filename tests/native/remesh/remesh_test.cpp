@@ -118,3 +118,37 @@ TEST_CASE("remesh: shared/data model not yet meeting the bound (mech-holes-shark
     checkRemesh(rr.mesh, o, name, false);
   }
 }
+
+TEST_CASE("remesh: returnPatches gives each patch's planar mesh, consistent with the output") {
+  RemeshOptions o;
+  o.targetEdgeLengthRel = 0.05;
+  o.computeHausdorff = false;
+  o.returnPatches = true;
+  const MeshBuffers in = testshapes::cylinder(48, 12, 6);
+  RemeshResult r = remesh(in, o);
+  REQUIRE(r.status.ok());
+  REQUIRE(r.patches.size() == r.report.patches);
+  REQUIRE(r.patchOfTriangle.size() == r.mesh.triangleCount());
+  std::vector<size_t> next(r.patches.size(), 0);
+  for (size_t t = 0; t < r.mesh.triangleCount(); ++t) {
+    const RemeshPatch& p = r.patches[r.patchOfTriangle[t]];
+    const size_t k = next[r.patchOfTriangle[t]]++;
+    REQUIRE(3 * k + 2 < p.triangles.size());
+    for (int c = 0; c < 3; ++c) CHECK(p.outputVertex[p.triangles[3 * k + c]] == r.mesh.triangles[3 * t + c]);
+    // counter-clockwise in the plane
+    const double* a = &p.uv[2 * p.triangles[3 * k]];
+    const double* b = &p.uv[2 * p.triangles[3 * k + 1]];
+    const double* c = &p.uv[2 * p.triangles[3 * k + 2]];
+    CHECK((b[0] - a[0]) * (c[1] - a[1]) - (b[1] - a[1]) * (c[0] - a[0]) > 0);
+  }
+  size_t inputFaces = 0;
+  for (size_t i = 0; i < r.patches.size(); ++i) {
+    const RemeshPatch& p = r.patches[i];
+    CHECK(next[i] * 3 == p.triangles.size());
+    CHECK(p.layoutUv.size() == 2 * p.layoutFactor.size());
+    CHECK(p.layoutTriangles.size() == 3 * p.layoutInputFace.size());
+    for (uint32_t f : p.layoutInputFace) CHECK(f < in.triangleCount());
+    inputFaces += p.layoutInputFace.size();
+  }
+  CHECK(inputFaces == in.triangleCount());  // the patches partition the input
+}
