@@ -293,7 +293,7 @@ export interface RemeshOptions {
   optimize?: boolean;
   /** Return every patch in the plane (RemeshResult.patches, patchOfTriangle), e.g. to draw the flattened domain. Default false. */
   patches?: boolean;
-  /** Optimization passes (hard cap, default 6). */
+  /** Optimization passes (hard cap, default 2; each pass costs about as much as the lift). */
   optimizeIterations?: number;
   /** Stop when a pass gains less than this fraction of the mean min angle (default 1e-3). */
   optimizeTolerance?: number;

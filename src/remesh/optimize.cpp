@@ -33,11 +33,16 @@ struct Mesh {
   std::vector<Vec3>& pos;
   const std::vector<uint8_t>& fixed;
   std::vector<uint32_t> starStart, starTri;  // CSR vertex -> triangles
+  std::vector<double> minAngle;              // cached 3D min angle per triangle (degrees)
 
   const double* p(uint32_t v) const { return &xy[2 * size_t(v)]; }
   double triMin(uint32_t t) const {
     const uint32_t* v = &tri[3 * size_t(t)];
     return minAngleDeg3(pos[v[0]], pos[v[1]], pos[v[2]]);
+  }
+  void cacheAll() {
+    minAngle.resize(tri.size() / 3);
+    for (size_t t = 0; t < minAngle.size(); ++t) minAngle[t] = triMin(uint32_t(t));
   }
   void buildStars() {
     const size_t nv = xy.size() / 2, nt = tri.size() / 3;
@@ -53,15 +58,24 @@ struct Mesh {
 
 // Try moving v to (x, y): accepted when no star triangle inverts in the plane and the star's 3D
 // min angles improve under the bound rule (see the header). Returns whether it moved.
-bool tryMove(Mesh& m, uint32_t v, double x, double y, const LiftFn& lift, double bound) {
+struct StarQuality {
+  double min = 180, sum = 0;
+};
+
+StarQuality starQuality(const Mesh& m, uint32_t v) {
+  StarQuality q;
+  for (uint32_t k = m.starStart[v]; k < m.starStart[v + 1]; ++k) {
+    const double a = m.minAngle[m.starTri[k]];
+    q.min = std::min(q.min, a);
+    q.sum += a;
+  }
+  return q;
+}
+
+bool tryMove(Mesh& m, uint32_t v, double x, double y, const LiftFn& lift, double bound, StarQuality& old) {
   const uint32_t* s = &m.starTri[m.starStart[v]];
   const size_t n = m.starStart[v + 1] - m.starStart[v];
-  double oldMin = 180, oldSum = 0;
-  for (size_t i = 0; i < n; ++i) {
-    double a = m.triMin(s[i]);
-    oldMin = std::min(oldMin, a);
-    oldSum += a;
-  }
+  const double oldMin = old.min, oldSum = old.sum;
   const double q[2] = {x, y};
   for (size_t i = 0; i < n; ++i) {
     const uint32_t* t = &m.tri[3 * size_t(s[i])];
@@ -78,8 +92,10 @@ bool tryMove(Mesh& m, uint32_t v, double x, double y, const LiftFn& lift, double
   const Vec3 keep = m.pos[v];
   m.pos[v] = P;
   double newMin = 180, newSum = 0;
+  double fresh[64];
   for (size_t i = 0; i < n; ++i) {
     double a = m.triMin(s[i]);
+    if (i < 64) fresh[i] = a;
     newMin = std::min(newMin, a);
     newSum += a;
   }
@@ -91,6 +107,8 @@ bool tryMove(Mesh& m, uint32_t v, double x, double y, const LiftFn& lift, double
   }
   m.xy[2 * size_t(v)] = x;
   m.xy[2 * size_t(v) + 1] = y;
+  for (size_t i = 0; i < n; ++i) m.minAngle[s[i]] = i < 64 ? fresh[i] : m.triMin(s[i]);
+  old = {newMin, newSum};
   return true;
 }
 
@@ -131,7 +149,7 @@ bool neighbourCentroid(const Mesh& m, uint32_t v, double out[2]) {
 
 // One pass of flips: an interior edge flips when its quad is strictly convex in the plane and
 // the smaller 3D min angle of its two triangles gets larger. Returns the number of flips.
-size_t flipPass(Mesh& m) {
+size_t flipPass(Mesh& m, std::vector<uint8_t>& touched) {
   auto key = [](uint32_t a, uint32_t b) { return (uint64_t(std::min(a, b)) << 32) | std::max(a, b); };
   std::unordered_map<uint64_t, std::array<uint32_t, 2>> edgeTris;
   edgeTris.reserve(m.tri.size());
@@ -167,9 +185,11 @@ size_t flipPass(Mesh& m) {
     // new triangles (c0, x, c1) and (c1, y, c0): both must be strictly positive in the plane
     const double l2 = std::pow(m.p(c0)[0] - m.p(c1)[0], 2) + std::pow(m.p(c0)[1] - m.p(c1)[1], 2);
     if (!(orient(m.p(c0), m.p(x), m.p(c1)) > 1e-6 * l2) || !(orient(m.p(c1), m.p(y), m.p(c0)) > 1e-6 * l2)) continue;
-    const double before = std::min(m.triMin(t0), m.triMin(t1));
-    const double after = std::min(minAngleDeg3(m.pos[c0], m.pos[x], m.pos[c1]), minAngleDeg3(m.pos[c1], m.pos[y], m.pos[c0]));
-    if (!(after > before + 1e-6)) continue;
+    const double before = std::min(m.minAngle[t0], m.minAngle[t1]);
+    const double n0 = minAngleDeg3(m.pos[c0], m.pos[x], m.pos[c1]), n1 = minAngleDeg3(m.pos[c1], m.pos[y], m.pos[c0]);
+    if (!(std::min(n0, n1) > before + 1e-6)) continue;
+    m.minAngle[t0] = n0;
+    m.minAngle[t1] = n1;
     // the edges (x, c1) of t1 and (y, c0) of t0 change sides
     m.tri[3 * size_t(t0)] = c0, m.tri[3 * size_t(t0) + 1] = x, m.tri[3 * size_t(t0) + 2] = c1;
     m.tri[3 * size_t(t1)] = c1, m.tri[3 * size_t(t1) + 1] = y, m.tri[3 * size_t(t1) + 2] = c0;
@@ -182,6 +202,7 @@ size_t flipPass(Mesh& m) {
     };
     swapTri(x, c1, t1, t0);
     swapTri(y, c0, t0, t1);
+    touched[x] = touched[y] = touched[c0] = touched[c1] = 1;
     ++flips;
   }
   return flips;
@@ -191,44 +212,63 @@ double meanMin(const Mesh& m) {
   const size_t nt = m.tri.size() / 3;
   if (nt == 0) return 0;
   double s = 0;
-  for (size_t t = 0; t < nt; ++t) s += m.triMin(uint32_t(t));
+  for (size_t t = 0; t < nt; ++t) s += m.minAngle[t];
   return s / double(nt);
 }
 
 }  // namespace
 
 double minAngleDeg3(const Vec3& a, const Vec3& b, const Vec3& c) {
-  const double A = features::angleBetween(b - a, c - a), B = features::angleBetween(c - b, a - b);
-  return std::min({A, B, M_PI - A - B}) * kRadToDeg;
+  // the smallest angle is opposite the shortest edge: one atan2 instead of three
+  const Vec3 ab = b - a, bc = c - b, ca = a - c;
+  const double lab = features::dot(ab, ab), lbc = features::dot(bc, bc), lca = features::dot(ca, ca);
+  double angle;
+  if (lab <= lbc && lab <= lca) angle = features::angleBetween(a - c, b - c);       // at c
+  else if (lbc <= lca) angle = features::angleBetween(b - a, c - a);                // at a
+  else angle = features::angleBetween(c - b, a - b);                                // at b
+  return angle * kRadToDeg;
 }
 
 OptimizeStats optimizePatch(std::vector<double>& xy, std::vector<uint32_t>& triangles, std::vector<Vec3>& pos,
                             const std::vector<uint8_t>& fixed, const LiftFn& lift, const OptimizeOptions& o) {
-  Mesh m{xy, triangles, pos, fixed, {}, {}};
+  Mesh m{xy, triangles, pos, fixed, {}, {}, {}};
   OptimizeStats st;
+  m.cacheAll();
   st.meanMinAngleBefore = st.meanMinAngleAfter = meanMin(m);
   const size_t nv = xy.size() / 2;
   double last = st.meanMinAngleBefore;
+  // active set: a vertex is visited while it or a neighbour moved (or a flip touched its star)
+  // in the previous pass
+  std::vector<uint8_t> active(nv, 1), nextActive(nv, 0);
   for (int it = 0; it < o.maxIterations; ++it) {
     m.buildStars();
+    std::fill(nextActive.begin(), nextActive.end(), 0);
     for (uint32_t v = 0; v < nv; ++v) {
-      if (fixed[v] || m.starStart[v] == m.starStart[v + 1]) continue;
+      if (fixed[v] || !active[v] || m.starStart[v] == m.starStart[v + 1]) continue;
       const double x = xy[2 * size_t(v)], y = xy[2 * size_t(v) + 1];
-      // the full ODT step, else half of it; then the centroid of the neighbours (Laplacian), which
-      // helps where the ODT position is pulled off by a big star triangle
-      double target[2], lap[2];
+      StarQuality q = starQuality(m, v);
+      // candidates, the first accepted wins: the ODT position, the centroid of the neighbours
+      // (Laplacian: helps where a big star triangle pulls the ODT position off), then half steps
+      double cand[4][2];
+      int nc = 0;
+      double t[2] = {x, y};
+      const bool odt = odtTarget(m, v, t);
+      if (odt) cand[nc][0] = t[0], cand[nc][1] = t[1], ++nc;
+      double l[2] = {x, y};
+      const bool lap = neighbourCentroid(m, v, l);
+      if (lap) cand[nc][0] = l[0], cand[nc][1] = l[1], ++nc;
+      if (odt) cand[nc][0] = 0.5 * (x + t[0]), cand[nc][1] = 0.5 * (y + t[1]), ++nc;
+      if (lap) cand[nc][0] = 0.5 * (x + l[0]), cand[nc][1] = 0.5 * (y + l[1]), ++nc;
       bool moved = false;
-      if (odtTarget(m, v, target))
-        moved = tryMove(m, v, target[0], target[1], lift, o.minAngleDeg) ||
-                tryMove(m, v, 0.5 * (x + target[0]), 0.5 * (y + target[1]), lift, o.minAngleDeg);
-      if (neighbourCentroid(m, v, lap)) {
-        const double cx = xy[2 * size_t(v)], cy = xy[2 * size_t(v) + 1];
-        moved = tryMove(m, v, lap[0], lap[1], lift, o.minAngleDeg) ||
-                tryMove(m, v, 0.5 * (cx + lap[0]), 0.5 * (cy + lap[1]), lift, o.minAngleDeg) || moved;
-      }
-      st.moves += moved;
+      for (int c = 0; c < nc && !moved; ++c) moved = tryMove(m, v, cand[c][0], cand[c][1], lift, o.minAngleDeg, q);
+      if (!moved) continue;
+      ++st.moves;
+      for (uint32_t k = m.starStart[v]; k < m.starStart[v + 1]; ++k)
+        for (int c = 0; c < 3; ++c) nextActive[m.tri[3 * size_t(m.starTri[k]) + c]] = 1;
     }
-    st.flips += flipPass(m);
+    const size_t flips = flipPass(m, nextActive);
+    st.flips += flips;
+    active.swap(nextActive);
     st.iterations = it + 1;
     const double now = meanMin(m);
     st.meanMinAngleAfter = now;

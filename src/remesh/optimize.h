@@ -20,7 +20,7 @@ namespace conformesh::optimization {
 
 struct OptimizeOptions {
   double minAngleDeg = 30.0;  //!< the 3D angle bound a move or flip must keep
-  int maxIterations = 6;      //!< passes over all vertices and edges (hard cap)
+  int maxIterations = 2;      //!< passes over all vertices and edges (hard cap)
   //! Stop when a pass raises the sum of per-triangle 3D min angles by less than this fraction.
   double tolerance = 1e-3;
 };
