@@ -261,6 +261,22 @@ OptimizeStats optimizePatch(std::vector<double>& xy, std::vector<uint32_t>& tria
       if (lap) cand[nc][0] = 0.5 * (x + l[0]), cand[nc][1] = 0.5 * (y + l[1]), ++nc;
       bool moved = false;
       for (int c = 0; c < nc && !moved; ++c) moved = tryMove(m, v, cand[c][0], cand[c][1], lift, o.minAngleDeg, q);
+      // a star still under the bound: a local search for a better min angle (8 directions, two
+      // step lengths relative to the star's shortest edge at v)
+      if (q.min < o.minAngleDeg) {
+        double shortest = INFINITY;
+        for (uint32_t k = m.starStart[v]; k < m.starStart[v + 1]; ++k) {
+          const uint32_t* t3 = &m.tri[3 * size_t(m.starTri[k])];
+          for (int c = 0; c < 3; ++c)
+            if (t3[c] != v) shortest = std::min(shortest, std::hypot(m.p(t3[c])[0] - xy[2 * size_t(v)], m.p(t3[c])[1] - xy[2 * size_t(v) + 1]));
+        }
+        for (double step : {0.25, 0.1})
+          for (int d = 0; d < 8; ++d) {
+            const double a = d * 0.78539816339744830962;
+            const double cx = xy[2 * size_t(v)], cy = xy[2 * size_t(v) + 1];
+            moved = tryMove(m, v, cx + step * shortest * std::cos(a), cy + step * shortest * std::sin(a), lift, o.minAngleDeg, q) || moved;
+          }
+      }
       if (!moved) continue;
       ++st.moves;
       for (uint32_t k = m.starStart[v]; k < m.starStart[v + 1]; ++k)
