@@ -57,6 +57,7 @@ val reportToJs(const RemeshReport& r) {
   o.set("patchSplitsForScale", double(r.patchSplitsForScale));
   o.set("conformingRounds", r.conformingRounds);
   o.set("certificateRounds", r.certificateRounds);
+  o.set("estimatedTriangles", r.estimatedTriangles);
   o.set("topologyPreserved", r.topologyPreserved);
   const StageSeconds& t = r.seconds;
   val s = val::object();
@@ -121,6 +122,10 @@ val remeshJs(val positions, val triangles, val vertexSizing, val featureEdges, v
     o.computeHausdorff = bindings::boolOption(options, "computeHausdorff", o.computeHausdorff, st);
     o.hausdorffSamples =
         size_t(bindings::numberOption(options, "hausdorffSamples", double(o.hausdorffSamples), st, 1, 1e8));
+    // limits: 0 passes through and is rejected by remesh (InvalidArgument), never "unlimited"
+    o.maxTriangles = size_t(bindings::numberOption(options, "maxTriangles", double(o.maxTriangles), st, 0, 1e18));
+    o.maxVertices = size_t(bindings::numberOption(options, "maxVertices", double(o.maxVertices), st, 0, 1e18));
+    o.maxMemoryBytes = bindings::numberOption(options, "maxMemoryBytes", o.maxMemoryBytes, st, 0);
     o.vertexSizing = bindings::vectorFromJs<double>(vertexSizing);
     const std::vector<uint32_t> fe = bindings::vectorFromJs<uint32_t>(featureEdges);
     if (fe.size() % 2 != 0) fail(Code::InvalidArgument, st, "featureEdges must hold 2 vertex indices per edge");

@@ -181,6 +181,9 @@ const remeshKeys: (keyof RemeshOptions)[] = [
   'maxCertificateRounds',
   'computeHausdorff',
   'hausdorffSamples',
+  'maxTriangles',
+  'maxVertices',
+  'maxMemoryBytes',
 ];
 
 const validateKeys: (keyof ValidateOptions)[] = [
