@@ -2,6 +2,7 @@
 #include <emscripten/bind.h>
 #include <emscripten/val.h>
 
+#include <cstdint>
 #include <string>
 #include <utility>
 #include <vector>
@@ -122,9 +123,14 @@ val remeshJs(val positions, val triangles, val vertexSizing, val featureEdges, v
     o.computeHausdorff = bindings::boolOption(options, "computeHausdorff", o.computeHausdorff, st);
     o.hausdorffSamples =
         size_t(bindings::numberOption(options, "hausdorffSamples", double(o.hausdorffSamples), st, 1, 1e8));
-    // limits: 0 passes through and is rejected by remesh (InvalidArgument), never "unlimited"
-    o.maxTriangles = size_t(bindings::numberOption(options, "maxTriangles", double(o.maxTriangles), st, 0, 1e18));
-    o.maxVertices = size_t(bindings::numberOption(options, "maxVertices", double(o.maxVertices), st, 0, 1e18));
+    // limits: 0 passes through and is rejected by remesh (InvalidArgument), never "unlimited";
+    // values beyond size_t (32 bits here) saturate
+    auto count = [&](const char* name, size_t fallback) {
+      const double v = bindings::numberOption(options, name, double(fallback), st, 0, 1e18);
+      return v >= double(SIZE_MAX) ? SIZE_MAX : size_t(v);
+    };
+    o.maxTriangles = count("maxTriangles", o.maxTriangles);
+    o.maxVertices = count("maxVertices", o.maxVertices);
     o.maxMemoryBytes = bindings::numberOption(options, "maxMemoryBytes", o.maxMemoryBytes, st, 0);
     o.vertexSizing = bindings::vectorFromJs<double>(vertexSizing);
     const std::vector<uint32_t> fe = bindings::vectorFromJs<uint32_t>(featureEdges);

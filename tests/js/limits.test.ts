@@ -47,6 +47,10 @@ describe('remesh limits', () => {
     expect(r.report.triangles).toBeGreaterThan(0);
     expect(r.report.estimatedTriangles).toBeGreaterThan(0.5 * r.report.triangles);
     expect(r.report.estimatedTriangles).toBeLessThan(2 * r.report.triangles);
+    // a huge limit is no limit (saturates to the largest size_t of the 32-bit module)
+    expect(cm.remesh(square(4), { targetEdgeLengthRel: 0.1, computeHausdorff: false, maxTriangles: 1e15 }).report.triangles).toBe(
+      r.report.triangles,
+    );
     for (const key of ['maxTriangles', 'maxVertices', 'maxMemoryBytes'])
       expect(() => cm.remesh(square(4), { [key]: 0 })).toThrow(expect.objectContaining({ code: 'InvalidArgument' }));
   });
