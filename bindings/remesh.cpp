@@ -2,6 +2,7 @@
 #include <emscripten/bind.h>
 #include <emscripten/val.h>
 
+#include <cstdint>
 #include <string>
 #include <utility>
 #include <vector>
@@ -61,6 +62,7 @@ val reportToJs(const RemeshReport& r) {
   o.set("certificateRounds", r.certificateRounds);
   o.set("optimizeMoves", double(r.optimizeMoves));
   o.set("optimizeFlips", double(r.optimizeFlips));
+  o.set("estimatedTriangles", r.estimatedTriangles);
   o.set("topologyPreserved", r.topologyPreserved);
   const StageSeconds& t = r.seconds;
   val s = val::object();
@@ -130,6 +132,15 @@ val remeshJs(val positions, val triangles, val vertexSizing, val featureEdges, v
     o.optimizeTolerance = bindings::numberOption(options, "optimizeTolerance", o.optimizeTolerance, st, 0);
     o.hausdorffSamples =
         size_t(bindings::numberOption(options, "hausdorffSamples", double(o.hausdorffSamples), st, 1, 1e8));
+    // limits: 0 passes through and is rejected by remesh (InvalidArgument), never "unlimited";
+    // values beyond size_t (32 bits here) saturate
+    auto count = [&](const char* name, size_t fallback) {
+      const double v = bindings::numberOption(options, name, double(fallback), st, 0, 1e18);
+      return v >= double(SIZE_MAX) ? SIZE_MAX : size_t(v);
+    };
+    o.maxTriangles = count("maxTriangles", o.maxTriangles);
+    o.maxVertices = count("maxVertices", o.maxVertices);
+    o.maxMemoryBytes = bindings::numberOption(options, "maxMemoryBytes", o.maxMemoryBytes, st, 0);
     o.vertexSizing = bindings::vectorFromJs<double>(vertexSizing);
     const std::vector<uint32_t> fe = bindings::vectorFromJs<uint32_t>(featureEdges);
     if (fe.size() % 2 != 0) fail(Code::InvalidArgument, st, "featureEdges must hold 2 vertex indices per edge");

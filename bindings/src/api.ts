@@ -185,6 +185,9 @@ const remeshKeys: (keyof RemeshOptions)[] = [
   'patches',
   'computeHausdorff',
   'hausdorffSamples',
+  'maxTriangles',
+  'maxVertices',
+  'maxMemoryBytes',
 ];
 
 const validateKeys: (keyof ValidateOptions)[] = [

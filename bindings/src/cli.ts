@@ -160,7 +160,7 @@ const refine2dUsage =
 const flattenUsage =
   'flatten IN -o OUT.obj [--boundary circle|free|corners] [--corner-angle DEG] [--no-flips] [--json]';
 const remeshUsage =
-  'remesh IN -o OUT [--min-angle D] [--edge-length L | --edge-length-rel R] [--feature-angle D] [--chord-tol T] [--json] [--no-hausdorff] [--no-optimize]';
+  'remesh IN -o OUT [--min-angle D] [--edge-length L | --edge-length-rel R] [--feature-angle D] [--chord-tol T] [--max-triangles N] [--max-vertices N] [--json] [--no-hausdorff] [--no-optimize]';
 
 const infoUsage = 'info FILE [--json] [--weld TOL] [--format NAME]';
 
@@ -271,7 +271,7 @@ const commands: Record<string, Command> = {
   remesh: {
     usage: remeshUsage,
     summary: 'remesh a surface: conformal flattening per patch, planar Delaunay refinement, lift',
-    valueFlags: ['-o', '--min-angle', '--edge-length', '--edge-length-rel', '--feature-angle', '--chord-tol'],
+    valueFlags: ['-o', '--min-angle', '--edge-length', '--edge-length-rel', '--feature-angle', '--chord-tol', '--max-triangles', '--max-vertices'],
     switches: ['--json', '--no-hausdorff', '--no-optimize'],
     async run(args, api) {
       if (args.positional.length !== 1) throw new ConformeshError('InvalidArgument', 'api', 'remesh needs exactly one input file');
@@ -285,6 +285,9 @@ const commands: Record<string, Command> = {
         chordTolerance: numberFlag(args, '--chord-tol', -1),
         computeHausdorff: !args.flags.has('--no-hausdorff'),
         optimize: !args.flags.has('--no-optimize'),
+        // as the native CLI: values below 1 are passed as 0 (InvalidArgument, never "unlimited")
+        maxTriangles: Math.max(0, Math.min(numberFlag(args, '--max-triangles', 32 * 2 ** 20), 1e18)),
+        maxVertices: Math.max(0, Math.min(numberFlag(args, '--max-vertices', 16 * 2 ** 20), 1e18)),
       };
       const path = args.positional[0]!;
       const mesh = api.readMesh(await readFileBytes(path), { fileName: path });
@@ -330,6 +333,7 @@ const commands: Record<string, Command> = {
           `"flowIterations":[${R.flowIterations.join(',')}]`,
           num('conformingRounds', R.conformingRounds),
           num('certificateRounds', R.certificateRounds),
+          num('estimatedTriangles', R.estimatedTriangles),
           num('optimizeMoves', R.optimizeMoves),
           num('optimizeFlips', R.optimizeFlips),
           `"warnings":${JSON.stringify(R.warnings)}`,

@@ -304,6 +304,16 @@ export interface RemeshOptions {
   vertexSizing?: ArrayLike<number>;
   /** User feature edges: 2 input vertex indices per edge. */
   featureEdges?: ArrayLike<number>;
+  /**
+   * Output limits. The output size and peak memory are predicted from the sizing field before
+   * flattening and refinement, and the real counts checked after refinement: above a limit the call
+   * fails with `ConformeshError` code 'TooLarge' (message: the estimate or count and the limit).
+   * 0 is 'InvalidArgument', not "no limit": pass a huge number to lift one.
+   * Defaults: maxTriangles 33554432 (32 Mi), maxVertices 16777216 (16 Mi), maxMemoryBytes 3 GiB.
+   */
+  maxTriangles?: number;
+  maxVertices?: number;
+  maxMemoryBytes?: number;
 }
 
 /** An input corner whose angle is below the bound: the output triangles touching it are exempt. */
@@ -352,6 +362,8 @@ export interface RemeshReport {
   /** Vertex moves and edge flips accepted by the optimization. */
   optimizeMoves: number;
   optimizeFlips: number;
+  /** Output triangles predicted from the sizing field before refinement (checked against maxTriangles). */
+  estimatedTriangles: number;
   topologyPreserved: boolean;
   seconds: {
     validate: number;

@@ -1,4 +1,5 @@
 // conformesh remesh: remesh a surface mesh file and print the quality report.
+#include <algorithm>
 #include <cstdio>
 #include <string>
 
@@ -47,6 +48,7 @@ std::string reportJson(const RemeshReport& r) {
   s += "],";
   num("conformingRounds", r.conformingRounds);
   num("certificateRounds", r.certificateRounds);
+  num("estimatedTriangles", r.estimatedTriangles);
   num("optimizeMoves", double(r.optimizeMoves));
   num("optimizeFlips", double(r.optimizeFlips));
   s += "\"warnings\":[";
@@ -89,7 +91,8 @@ int run(const std::vector<std::string>& argv) {
   for (const auto& a : argv) json = json || a == "--json";
   try {
     Args args = parseArgs(argv,
-                          {"-o", "--min-angle", "--edge-length", "--edge-length-rel", "--feature-angle", "--chord-tol"},
+                          {"-o", "--min-angle", "--edge-length", "--edge-length-rel", "--feature-angle", "--chord-tol",
+                           "--max-triangles", "--max-vertices"},
                           {"--json", "--no-hausdorff", "--no-optimize"});
     if (args.positional.size() != 1) fail(Code::InvalidArgument, Stage::Api, "remesh needs exactly one input file");
     if (args.has("--edge-length") && args.has("--edge-length-rel"))
@@ -102,6 +105,13 @@ int run(const std::vector<std::string>& argv) {
     opt.chordTolerance = args.number("--chord-tol", opt.chordTolerance);
     opt.computeHausdorff = !args.has("--no-hausdorff");
     opt.optimize = !args.has("--no-optimize");
+    // limits: 0 and negative values are rejected by remesh (InvalidArgument), never "unlimited"
+    auto limit = [&](const char* flag, size_t fallback) {
+      double v = args.number(flag, double(fallback));
+      return v >= 1 ? size_t(std::min(v, 1e18)) : size_t(0);
+    };
+    opt.maxTriangles = limit("--max-triangles", opt.maxTriangles);
+    opt.maxVertices = limit("--max-vertices", opt.maxVertices);
     const std::string& inPath = args.positional[0];
     ReadOptions ro;
     ro.fileName = inPath;
@@ -125,7 +135,7 @@ int run(const std::vector<std::string>& argv) {
 
 const CommandRegistrar registrar({"remesh",
                                   "remesh IN -o OUT [--min-angle D] [--edge-length L | --edge-length-rel R] "
-                                  "[--feature-angle D] [--chord-tol T] [--json] [--no-hausdorff] [--no-optimize]",
+                                  "[--feature-angle D] [--chord-tol T] [--max-triangles N] [--max-vertices N] [--json] [--no-hausdorff] [--no-optimize]",
                                   "remesh a surface: conformal flattening per patch, planar Delaunay refinement, lift",
                                   run});
 

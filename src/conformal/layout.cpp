@@ -5,6 +5,7 @@
 #include <limits>
 
 #include "conformal/triangle_geometry.h"
+#include "planar/predicates.h"
 
 namespace conformesh::conformal {
 
@@ -41,6 +42,22 @@ int centralFace(const IT& T) {
 double orient(const double* a, const double* b, const double* c) {
   return (b[0] - a[0]) * (c[1] - a[1]) - (b[1] - a[1]) * (c[0] - a[0]);
 }
+
+// Whether the closed segments ab and cd share a point, with exact orientation signs: a proper
+// crossing, or an endpoint of one on the other (touching, collinear overlap). Disjoint collinear
+// segments (the sides of a long straight boundary) do not intersect.
+bool segmentsIntersect(const double* a, const double* b, const double* c, const double* d) {
+  const double o1 = planar::orient2d(a, b, c), o2 = planar::orient2d(a, b, d);
+  const double o3 = planar::orient2d(c, d, a), o4 = planar::orient2d(c, d, b);
+  if (((o1 > 0 && o2 < 0) || (o1 < 0 && o2 > 0)) && ((o3 > 0 && o4 < 0) || (o3 < 0 && o4 > 0))) return true;
+  // r on the line through p and q: is it on the segment?
+  auto onSegment = [](const double* p, const double* q, const double* r) {
+    return std::min(p[0], q[0]) <= r[0] && r[0] <= std::max(p[0], q[0]) && std::min(p[1], q[1]) <= r[1] &&
+           r[1] <= std::max(p[1], q[1]);
+  };
+  return (o1 == 0 && onSegment(a, b, c)) || (o2 == 0 && onSegment(a, b, d)) || (o3 == 0 && onSegment(c, d, a)) ||
+         (o4 == 0 && onSegment(c, d, b));
+}
 }  // namespace
 
 int countSegmentCrossings(const std::vector<double>& xy, const std::vector<std::pair<int, int>>& seg) {
@@ -69,9 +86,7 @@ int countSegmentCrossings(const std::vector<double>& xy, const std::vector<std::
       for (size_t q = p + 1; q < cell.size(); ++q) {
         const auto &s = seg[cell[p]], &t = seg[cell[q]];
         if (s.first == t.first || s.first == t.second || s.second == t.first || s.second == t.second) continue;
-        const double *a = &xy[2 * s.first], *b = &xy[2 * s.second], *c = &xy[2 * t.first], *d = &xy[2 * t.second];
-        const double o1 = orient(a, b, c), o2 = orient(a, b, d), o3 = orient(c, d, a), o4 = orient(c, d, b);
-        if (((o1 > 0) != (o2 > 0) || o1 == 0 || o2 == 0) && ((o3 > 0) != (o4 > 0) || o3 == 0 || o4 == 0))
+        if (segmentsIntersect(&xy[2 * s.first], &xy[2 * s.second], &xy[2 * t.first], &xy[2 * t.second]))
           hits.emplace_back(std::min(cell[p], cell[q]), std::max(cell[p], cell[q]));
       }
   std::sort(hits.begin(), hits.end());

@@ -20,6 +20,7 @@
 #include "planar/refine.h"
 #include "quality/metrics.h"
 #include "remesh/optimize.h"
+#include "remesh/limits.h"
 
 namespace conformesh {
 namespace {
@@ -659,6 +660,11 @@ RemeshResult Pipeline::run(const MeshBuffers& input) {
     for (size_t v = 0; v < so.vertexSizing.size(); ++v) so.vertexSizing[v] = opt_.vertexSizing[vm.vertexToInput[v]];
   }
   sizing_ = F::computeSizing(g_, seg_, so);
+  {  // output size and memory limits, before the heavy work (remesh/limits.h)
+    const OutputEstimate est = estimateOutput(g_, sizing_);
+    rep_.estimatedTriangles = est.triangles;
+    checkOutputEstimate(est, opt_);
+  }
   rep_.targetEdgeLength = sizing_.target;
   rep_.seconds.segment = elapsed(t0);
 
@@ -779,6 +785,7 @@ RemeshResult Pipeline::run(const MeshBuffers& input) {
   rep_.seconds.refine -= liftSeconds_ + optimizeSeconds_;
   rep_.seconds.optimize = optimizeSeconds_;
   rep_.seconds.stitch = elapsed(t0);
+  checkOutputCounts(out.vertexCount(), out.triangleCount(), opt_);  // remesh/limits.h
 
   // report
   auto as = quality::angleStats(out);

@@ -60,6 +60,16 @@ struct RemeshOptions {
   //! Two-sided Hausdorff distance in the report (sampled; costs time on big meshes).
   bool computeHausdorff = true;
   size_t hausdorffSamples = 50000;
+  //! Output limits (remesh/limits.h). Before flattening and refinement, the output size and the
+  //! peak memory are predicted from the sizing field; after refinement the real counts are
+  //! checked. Exceeding a limit fails with TooLarge (message: the estimate or count, and the
+  //! limit). 0 is InvalidArgument, NOT "no limit": pass a huge value (SIZE_MAX, 1e300) to lift one.
+  //! Defaults: 16 M vertices and 32 M triangles (as many as validate() accepts as input, 32-bit
+  //! indices throughout), and 3 GiB of heap: a WASM module has at most 4 GiB, and this keeps room
+  //! for the input, the JS copies of the result and the runtime.
+  size_t maxVertices = size_t(16) << 20;
+  size_t maxTriangles = size_t(32) << 20;
+  double maxMemoryBytes = 3.0 * double(size_t(1) << 30);
 };
 
 //! An input corner whose angle (3D, inside one patch) is below the bound: triangles touching it
@@ -97,6 +107,7 @@ struct RemeshReport {
   std::vector<int> flowIterations;  //!< Newton iterations per patch
   size_t patchSplitsForScale = 0;
   int conformingRounds = 0, certificateRounds = 0;
+  double estimatedTriangles = 0;  //!< output size predicted before refinement (remesh/limits.h)
   bool topologyPreserved = false;
   StageSeconds seconds;
   std::vector<std::string> warnings;
