@@ -237,6 +237,7 @@ FlatPatch flattenCompact(const MeshBuffers& patch, const FlattenOptions& options
   R.gaussBonnetError = flow.gaussBonnetError;
   R.boundaryLoops = int(T.loops.size());
   R.secondsFlow = since(t0);
+  R.flowProfile = flow.profile;
 
   // Normalize the scale: flat area = 3D area (Free keeps u = 0 on the boundary).
   std::vector<double> u = flow.u;

@@ -39,6 +39,17 @@ struct FlowOptions {
   int maxHalvings = 40;       //!< line search cap -> Code::NotConverged
 };
 
+//! Where the flow spends its time (wall seconds per phase, and counts), for benchmarks.
+struct FlowProfile {
+  double flips = 0;      //!< Delaunay flip passes
+  double angles = 0;     //!< angles, curvature, targets
+  double assemble = 0;   //!< cotangent Laplacian values
+  double analyze = 0;    //!< symbolic analysis (ordering, elimination tree)
+  double factor = 0;     //!< numeric factorization
+  double solve = 0;      //!< triangular solves, GMRES included
+  int evaluations = 0, analyses = 0, factorizations = 0, solves = 0;
+};
+
 struct FlowResult {
   std::vector<double> u;          //!< per vertex log scale factor (lengths scale by e^{(u_i+u_j)/2})
   std::vector<double> residuals;  //!< max |K - Kbar| before each iteration and at the end
@@ -49,6 +60,7 @@ struct FlowResult {
   double gaussBonnetError = 0.0;  //!< |sum K - 2 pi chi| at the end
   int outerLoop = 0;              //!< index of the outer loop in T.loops
   std::vector<double> Kbar;       //!< final target curvature per vertex
+  FlowProfile profile;
 };
 
 //! Run Newton's method on T (flipped in place). Throws conformesh::Error (stage Flatten):
