@@ -238,6 +238,7 @@ FlatPatch flattenCompact(const MeshBuffers& patch, const FlattenOptions& options
   R.boundaryLoops = int(T.loops.size());
   R.secondsFlow = since(t0);
   R.flowProfile = flow.profile;
+  R.cornerAngleScale = flow.cornerAngleScale;
 
   // Normalize the scale: flat area = 3D area (Free keeps u = 0 on the boundary).
   std::vector<double> u = flow.u;
@@ -263,6 +264,7 @@ FlatPatch flattenCompact(const MeshBuffers& patch, const FlattenOptions& options
   }
   if (progress && !progress(Stage::Flatten, 0.85)) fail(Code::Cancelled, Stage::Flatten, "flatten: cancelled");
 
+  if (options.requireValidLayout) requireRepresentableLayout(T, u, fo.boundary);
   const auto t1 = Clock::now();
   LayoutResult L = layoutFlat(T, u);
   if (fo.boundary == BoundaryCondition::Circle && options.balanceMobius && L.invertedTriangles == 0)

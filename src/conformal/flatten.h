@@ -58,6 +58,9 @@ struct FlattenReport {
   double areaDistortionMin = 1.0, areaDistortionMax = 1.0, areaDistortionRange = 1.0;
   size_t overlayCrossings = 0;        //!< input edge / final edge crossings in the overlay
   int boundaryLoops = 0;
+  //! Corners: the factor applied to the corner angles so that they close a polygon when every
+  //! outer vertex is a corner (Gauss–Bonnet; 1 when the angles were used as given).
+  double cornerAngleScale = 1.0;
 };
 
 struct FlatPatch {

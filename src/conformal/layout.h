@@ -4,6 +4,7 @@
 #include <vector>
 
 #include "conformal/intrinsic_triangulation.h"
+#include "conformal/ricci_flow.h"
 
 namespace conformesh::conformal {
 
@@ -21,6 +22,16 @@ struct LayoutResult {
 //! measure how well non-tree edges close up (holonomy, round-off), whether triangles are
 //! inverted, and whether the boundary loops are simple and pairwise disjoint.
 LayoutResult layoutFlat(const IntrinsicTriangulation& T, const std::vector<double>& u);
+
+//! Whether a layout of T with the metric u can be computed in double precision. Positions carry
+//! round-off of about 2^-52 times the domain's size, so an edge shorter than
+//! kMinRelativeEdgeLength times sqrt(flat area) cannot keep its length to the layout's 1e-3
+//! check (and is useless to the planar mesher). This happens when the conformal scale factor
+//! spans too many orders of magnitude: a round disk for a shape with long thin limbs crowds the
+//! limbs exponentially (alligator.obj: e^{2u} spans 1e47). Throws conformesh::Error
+//! NumericalFailure (stage Flatten) with the numbers and what to do otherwise.
+constexpr double kMinRelativeEdgeLength = 1e-12;
+void requireRepresentableLayout(const IntrinsicTriangulation& T, const std::vector<double>& u, BoundaryCondition boundary);
 
 //! Count intersecting pairs among segments (a_k, b_k) (indices into xy), ignoring pairs that
 //! share an endpoint. Uniform grid; O(n) expected for boundary polygons.

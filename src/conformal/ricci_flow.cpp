@@ -5,8 +5,10 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <cstdio>
 #include <string>
 
+#include "conformal/layout.h"
 #include "conformal/triangle_geometry.h"
 
 namespace conformesh::conformal {
@@ -235,6 +237,45 @@ void Flow::setupBoundary() {
         fail(Code::InvalidArgument, Stage::Flatten, "flatten: corner angle must be in (0, 2 pi)");
       cornerKbar_[c.first] = kPi - c.second;
     }
+    // Gauss–Bonnet: the targets on the outer loop must turn by 2 pi in all (interior Kbar = 0,
+    // inner loops are circles). The smooth outer vertices take the rest, 2 pi - sum (pi -
+    // angle), in proportion to their share of the input's boundary length: fixed targets, so
+    // the energy stays convex and Newton converges quadratically (spreading by the current flat
+    // lengths instead made the targets move with u, and the frozen-target iteration could
+    // stall or diverge on jagged boundaries). When no smooth vertex exists (a jagged boundary:
+    // detectCorners marks every zigzag vertex), or the rest would give a smooth vertex an angle
+    // outside (0, 2 pi), the angles of a curved patch sum to (n - 2) pi + its total Gaussian
+    // curvature, which no straight-edged polygon has: every outer angle is then scaled by
+    // (n - 2) pi / sum so that they close (ratios kept, every angle stays positive).
+    if (opt_.corners.empty()) return;  // the circle
+    const auto& outerLoop = T_.loops[outer_];
+    const auto& outerEdges = T_.loopEdges[outer_];
+    const size_t n = outerLoop.size();
+    double sumC = 0.0, wRest = 0.0;
+    std::vector<double> share(n, 0.0);
+    for (size_t i = 0; i < n; ++i) {
+      const int v = outerLoop[i];
+      if (!std::isnan(cornerKbar_[v])) {
+        sumC += cornerKbar_[v];
+      } else {
+        share[i] = 0.5 * (std::exp(0.5 * T_.lambda[outerEdges[(i + n - 1) % n]]) + std::exp(0.5 * T_.lambda[outerEdges[i]]));
+        wRest += share[i];
+      }
+    }
+    const double rest = 2.0 * kPi - sumC;
+    bool feasible = wRest > 0.0;
+    for (size_t i = 0; i < n && feasible; ++i)
+      if (std::isnan(cornerKbar_[outerLoop[i]]) && !(std::fabs(rest * share[i] / wRest) < kPi)) feasible = false;
+    if (feasible) {
+      for (size_t i = 0; i < n; ++i)
+        if (std::isnan(cornerKbar_[outerLoop[i]])) cornerKbar_[outerLoop[i]] = rest * share[i] / wRest;
+    } else if (n >= 3) {
+      double sumAngle = 0.0;
+      for (int v : outerLoop) sumAngle += std::isnan(cornerKbar_[v]) ? kPi : kPi - cornerKbar_[v];
+      const double scale = (double(n) - 2.0) * kPi / sumAngle;
+      for (int v : outerLoop) cornerKbar_[v] = kPi - scale * (std::isnan(cornerKbar_[v]) ? kPi : kPi - cornerKbar_[v]);
+      R_.cornerAngleScale = scale;
+    }
   }
 }
 
@@ -281,20 +322,8 @@ void Flow::updateTargets() {
     if (int(k) == outer_ && opt_.boundary == BoundaryCondition::Corners)
       for (int v : loop)
         if (!std::isnan(cornerKbar_[v])) corners = true;
-    if (corners) {
-      double sumC = 0.0, wRest = 0.0;
-      for (size_t i = 0; i < n; ++i) {
-        if (!std::isnan(cornerKbar_[loop[i]]))
-          sumC += cornerKbar_[loop[i]];
-        else
-          wRest += 0.5 * (c[(i + n - 1) % n] + c[i]);
-      }
-      const double rest = 2.0 * kPi - sumC;
-      for (size_t i = 0; i < n; ++i) {
-        const int v = loop[i];
-        Kbar_[v] = !std::isnan(cornerKbar_[v]) ? cornerKbar_[v]
-                                               : (wRest > 0 ? rest * 0.5 * (c[(i + n - 1) % n] + c[i]) / wRest : 0.0);
-      }
+    if (corners) {  // fixed targets, set up once (setupBoundary)
+      for (int v : loop) Kbar_[v] = cornerKbar_[v];
       continue;
     }
     double R;
@@ -694,6 +723,15 @@ FlowResult Flow::run() {
   for (int v = 0; v < T_.nV; ++v)
     if (!(opt_.boundary == BoundaryCondition::Free && T_.boundaryVertex[v] && std::find(T_.loops[outer_].begin(), T_.loops[outer_].end(), v) != T_.loops[outer_].end()))
       R.maxError = std::max(R.maxError, std::fabs(K_[v] - Kbar_[v]));
+  if (!(R.maxError <= opt_.tolerance)) {
+    // The free unknowns converged but an equation held by the gauge did not (the pinned vertices
+    // of the Möbius gauge): in exact arithmetic it holds automatically, so round-off decided.
+    requireRepresentableLayout(T_, u_, opt_.boundary);
+    char buf[160];
+    std::snprintf(buf, sizeof buf, "flatten: the curvature error at the gauge's pinned vertices is %.2e (tolerance %.1e)", R.maxError,
+                  opt_.tolerance);
+    fail(Code::NotConverged, Stage::Flatten, buf);
+  }
   double sumK = 0.0;
   for (double k : K_) sumK += k;
   const double chi = double(T_.nV) - T_.nE + T_.nF;

@@ -26,8 +26,15 @@ namespace conformesh::conformal {
 //!  Free:    u = 0 on the outer loop (Dirichlet; least area distortion), inner loops circles.
 //!  Corners: Kbar = pi - angle at the given corners of the outer loop; the rest of the outer
 //!           turning (2 pi - sum) is spread over the other outer vertices by arc length (0 when
-//!           the corners sum to 2 pi: a straight-edged polygon); inner loops circles.
+//!           the corners sum to 2 pi: a straight-edged polygon); inner loops circles. When every
+//!           outer vertex is a corner, the angles are scaled by (n - 2) pi / sum to satisfy
+//!           Gauss–Bonnet (FlowResult::cornerAngleScale).
 enum class BoundaryCondition { Circle, Free, Corners };
+
+//! "circle", "free boundary" or "corner-preserving", for messages.
+inline const char* boundaryName(BoundaryCondition b) {
+  return b == BoundaryCondition::Circle ? "circle" : b == BoundaryCondition::Free ? "free boundary" : "corner-preserving";
+}
 
 struct FlowOptions {
   BoundaryCondition boundary = BoundaryCondition::Circle;
@@ -60,6 +67,9 @@ struct FlowResult {
   double gaussBonnetError = 0.0;  //!< |sum K - 2 pi chi| at the end
   int outerLoop = 0;              //!< index of the outer loop in T.loops
   std::vector<double> Kbar;       //!< final target curvature per vertex
+  //! Corners: factor applied to the corner angles to satisfy Gauss–Bonnet when every outer
+  //! vertex is a corner (1: the angles were used as given).
+  double cornerAngleScale = 1.0;
   FlowProfile profile;
 };
 
