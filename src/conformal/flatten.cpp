@@ -264,7 +264,6 @@ FlatPatch flattenCompact(const MeshBuffers& patch, const FlattenOptions& options
   }
   if (progress && !progress(Stage::Flatten, 0.85)) fail(Code::Cancelled, Stage::Flatten, "flatten: cancelled");
 
-  if (options.requireValidLayout) requireRepresentableLayout(T, u, fo.boundary);
   const auto t1 = Clock::now();
   LayoutResult L = layoutFlat(T, u);
   if (fo.boundary == BoundaryCondition::Circle && options.balanceMobius && L.invertedTriangles == 0)
@@ -273,12 +272,14 @@ FlatPatch flattenCompact(const MeshBuffers& patch, const FlattenOptions& options
   R.invertedTriangles = L.invertedTriangles;
   R.boundaryCrossings = L.boundaryCrossings;
   R.layoutLengthError = L.maxEdgeLengthError;
-  if (options.requireValidLayout && (L.invertedTriangles > 0 || L.boundaryCrossings > 0 || !(L.maxEdgeLengthError <= 1e-3)))
+  if (options.requireValidLayout && (L.invertedTriangles > 0 || L.boundaryCrossings > 0 || !(L.maxEdgeLengthError <= 1e-3))) {
+    const std::string why = scaleDiagnosis(T, u, fo.boundary);
     fail(Code::NumericalFailure, Stage::Flatten,
          "flatten: the layout has " + std::to_string(L.invertedTriangles) + " inverted triangles, " +
              std::to_string(L.boundaryCrossings) + " boundary crossings and a relative edge length error of " +
-             std::to_string(L.maxEdgeLengthError) + " (area distortion too large for double precision: " +
-             "try the free boundary or split the patch)");
+             std::to_string(L.maxEdgeLengthError) + ": " +
+             (why.empty() ? std::string("the area distortion may be too large for double precision: try the free boundary or split the patch") : why));
+  }
 
   out.uv = L.xy;
   out.u = u;

@@ -80,7 +80,7 @@ int countSegmentCrossings(const std::vector<double>& xy, const std::vector<std::
   return int(std::unique(hits.begin(), hits.end()) - hits.begin());
 }
 
-void requireRepresentableLayout(const IT& T, const std::vector<double>& u, BoundaryCondition boundary) {
+std::string scaleDiagnosis(const IT& T, const std::vector<double>& u, BoundaryCondition boundary) {
   double area = 0.0, minEdge = std::numeric_limits<double>::infinity();
   for (int f = 0; f < T.nF; ++f) {
     double lam[3], ang[3];
@@ -90,7 +90,7 @@ void requireRepresentableLayout(const IT& T, const std::vector<double>& u, Bound
     for (int k = 0; k < 3; ++k) minEdge = std::min(minEdge, std::exp(0.5 * lam[k]));
   }
   const double ratio = minEdge / std::sqrt(area);
-  if (ratio >= kMinRelativeEdgeLength) return;
+  if (ratio >= kMinRelativeEdgeLength) return "";
   double umin = std::numeric_limits<double>::infinity(), umax = -umin;
   for (double x : u) {
     umin = std::min(umin, x);
@@ -98,11 +98,11 @@ void requireRepresentableLayout(const IT& T, const std::vector<double>& u, Bound
   }
   char buf[400];
   std::snprintf(buf, sizeof buf,
-                "flatten: the %s map scales areas by factors e^{2u} spanning %.1e; its shortest edge is %.1e times the "
-                "domain size, below what double-precision coordinates resolve (%.0e): %s",
-                boundaryName(boundary), std::exp(2.0 * (umax - umin)), ratio, kMinRelativeEdgeLength,
+                "the %s map scales areas by factors e^{2u} spanning %.1e; its shortest edge is %.1e times the domain "
+                "size, beyond what double-precision coordinates resolve away from the layout's origin: %s",
+                boundaryName(boundary), std::exp(2.0 * (umax - umin)), ratio,
                 boundary == BoundaryCondition::Free ? "split the patch where it narrows" : "use the free boundary (u = 0), or split the patch where it narrows");
-  fail(Code::NumericalFailure, Stage::Flatten, buf);
+  return buf;
 }
 
 LayoutResult layoutFlat(const IT& T, const std::vector<double>& u) {

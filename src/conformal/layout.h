@@ -1,6 +1,7 @@
 // conformesh — isometric layout of a flat intrinsic triangulation in the plane, and its checks.
 #pragma once
 
+#include <string>
 #include <vector>
 
 #include "conformal/intrinsic_triangulation.h"
@@ -23,15 +24,16 @@ struct LayoutResult {
 //! inverted, and whether the boundary loops are simple and pairwise disjoint.
 LayoutResult layoutFlat(const IntrinsicTriangulation& T, const std::vector<double>& u);
 
-//! Whether a layout of T with the metric u can be computed in double precision. Positions carry
-//! round-off of about 2^-52 times the domain's size, so an edge shorter than
-//! kMinRelativeEdgeLength times sqrt(flat area) cannot keep its length to the layout's 1e-3
-//! check (and is useless to the planar mesher). This happens when the conformal scale factor
-//! spans too many orders of magnitude: a round disk for a shape with long thin limbs crowds the
-//! limbs exponentially (alligator.obj: e^{2u} spans 1e47). Throws conformesh::Error
-//! NumericalFailure (stage Flatten) with the numbers and what to do otherwise.
+//! Why a layout of T with the metric u may be beyond double precision, or "" when it is not
+//! suspect. Positions carry round-off relative to their distance from the layout's origin, so
+//! an edge shorter than kMinRelativeEdgeLength times sqrt(flat area) keeps its digits only near
+//! the origin (the central face). This happens when the conformal scale factor spans too many
+//! orders of magnitude: a round disk for a shape with long thin limbs crowds the limbs
+//! exponentially (alligator.obj: e^{2u} spans 1e47, its legs and tail at the rim). Used to
+//! explain a failed layout check or a gauge equation lost to round-off; not a check by itself
+//! (blade.off's free boundary map has edges 1e-20 of its size near the origin and lays out).
 constexpr double kMinRelativeEdgeLength = 1e-12;
-void requireRepresentableLayout(const IntrinsicTriangulation& T, const std::vector<double>& u, BoundaryCondition boundary);
+std::string scaleDiagnosis(const IntrinsicTriangulation& T, const std::vector<double>& u, BoundaryCondition boundary);
 
 //! Count intersecting pairs among segments (a_k, b_k) (indices into xy), ignoring pairs that
 //! share an endpoint. Uniform grid; O(n) expected for boundary polygons.

@@ -726,7 +726,9 @@ FlowResult Flow::run() {
   if (!(R.maxError <= opt_.tolerance)) {
     // The free unknowns converged but an equation held by the gauge did not (the pinned vertices
     // of the Möbius gauge): in exact arithmetic it holds automatically, so round-off decided.
-    requireRepresentableLayout(T_, u_, opt_.boundary);
+    const std::string why = scaleDiagnosis(T_, u_, opt_.boundary);
+    if (!why.empty())
+      fail(Code::NumericalFailure, Stage::Flatten, "flatten: the gauge's pinned vertices keep a curvature error of " + std::to_string(R.maxError) + ": " + why);
     char buf[160];
     std::snprintf(buf, sizeof buf, "flatten: the curvature error at the gauge's pinned vertices is %.2e (tolerance %.1e)", R.maxError,
                   opt_.tolerance);
