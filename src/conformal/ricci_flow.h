@@ -73,10 +73,14 @@ struct FlowResult {
   FlowProfile profile;
 };
 
-//! Run Newton's method on T (flipped in place). Throws conformesh::Error (stage Flatten):
-//! IterationLimit (iteration or flip cap), NotConverged (line search stalls, e.g. without flips
-//! when the triangle inequality breaks), NumericalFailure (factorization), InvalidArgument (bad
-//! corners), Cancelled (progress returned false).
+//! Run Newton's method on T (flipped in place). The Newton systems are solved by preconditioned
+//! Krylov methods with one sparse Cholesky factor of the Laplacian reused across iterations
+//! (see ricci_flow.cpp). Throws conformesh::Error (stage Flatten): IterationLimit (iteration or
+//! flip cap), NotConverged (line search stalls, e.g. without flips when the triangle inequality
+//! breaks; or an equation held by the gauge misses the tolerance), NumericalFailure
+//! (factorization; or the gauge equation is lost because the scale factors span more than double
+//! precision resolves, with the numbers), InvalidArgument (bad corners), Cancelled (progress
+//! returned false).
 FlowResult runRicciFlow(IntrinsicTriangulation& T, const FlowOptions& options, const ProgressFn& progress = {});
 
 //! Corner angles (angle[h] opposite halfedge h) for the metric u; returns the number of faces
