@@ -1,5 +1,11 @@
 // Benchmark and acceptance run of the flatten stage (issue 4).
-// Usage: bench_flatten [--quick]
+// Usage:
+//  bench_flatten IN [--boundary circle|free] [--repeat N] [--pullback]
+//     Flatten the mesh file IN N times (default 3) in one process; one JSON line per run and a
+//     last line with the medians: seconds (flatten() wall), cpuSeconds (process CPU of the
+//     call), iterations, maxCurvatureError, flips, invertedTriangles, and the flow's phases.
+//     The same program runs under Node (build/wasm/bench_flatten.cjs) for the WASM ratio.
+//  bench_flatten [--quick]
 //  1. face.obj subdivided once 1-to-4 (~207k faces): flatten (circle and free boundary), time per
 //     phase, Newton iterations, flips. Target: <= 2 s native (peer: CGAL's linear discrete
 //     conformal map 3.8 s; Campen et al. 2021 metric only 3.8-5.1 s on this machine).
@@ -10,6 +16,7 @@
 #include <cmath>
 #include <cstdio>
 #include <cstring>
+#include <ctime>
 #include <fstream>
 #include <iterator>
 #include <map>
@@ -23,12 +30,51 @@ using namespace conformesh;
 
 namespace {
 
-MeshBuffers readData(const std::string& name) {
-  std::ifstream in(std::string(CONFORMESH_DATA_DIR) + "/" + name, std::ios::binary);
+MeshBuffers readFile(const std::string& path) {
+  std::ifstream in(path, std::ios::binary);
+  if (!in.good()) fail(Code::InvalidArgument, Stage::Api, "bench_flatten: cannot open " + path);
   std::vector<uint8_t> bytes((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
   ReadOptions ro;
-  ro.fileName = name;
+  ro.fileName = path;
   return readMesh(bytes, ro).mesh;
+}
+
+MeshBuffers readData(const std::string& name) { return readFile(std::string(CONFORMESH_DATA_DIR) + "/" + name); }
+
+double median(std::vector<double> x) {
+  std::sort(x.begin(), x.end());
+  return x.empty() ? 0.0 : (x.size() % 2 ? x[x.size() / 2] : 0.5 * (x[x.size() / 2 - 1] + x[x.size() / 2]));
+}
+
+// One file, timed runs, JSON lines (the interface bench/run.mjs reads).
+int timeFile(const std::string& path, BoundaryCondition bc, int repeat, bool pullback) {
+  const MeshBuffers M = readFile(path);
+  FlattenOptions o;
+  o.boundary = bc;
+  o.pullback = pullback;
+  std::vector<double> wall, cpu;
+  FlattenReport last;
+  for (int r = 0; r < repeat; ++r) {
+    const std::clock_t c0 = std::clock();
+    FlatPatch P = flatten(M, o);
+    cpu.push_back(double(std::clock() - c0) / CLOCKS_PER_SEC);
+    wall.push_back(P.report.seconds);
+    last = P.report;
+    const auto& F = last.flowProfile;
+    std::printf("{\"run\":%d,\"seconds\":%.4f,\"cpuSeconds\":%.4f,\"flow\":%.4f,\"layout\":%.4f,\"overlay\":%.4f,"
+                "\"flips\":%.4f,\"angles\":%.4f,\"assemble\":%.4f,\"analyze\":%.4f,\"factor\":%.4f,\"solve\":%.4f,"
+                "\"evaluations\":%d,\"analyses\":%d,\"factorizations\":%d,\"solves\":%d}\n",
+                r, wall.back(), cpu.back(), last.secondsFlow, last.secondsLayout, last.secondsOverlay, F.flips, F.angles,
+                F.assemble, F.analyze, F.factor, F.solve, F.evaluations, F.analyses, F.factorizations, F.solves);
+    std::fflush(stdout);
+  }
+  std::printf("{\"input\":\"%s\",\"boundary\":\"%s\",\"faces\":%zu,\"repeat\":%d,\"seconds\":%.4f,\"secondsMin\":%.4f,"
+              "\"cpuSeconds\":%.4f,\"iterations\":%d,\"maxCurvatureError\":%.3e,\"flips\":%lld,\"euclideanFlips\":%lld,"
+              "\"invertedTriangles\":%d,\"areaDistortionRange\":%.4e}\n",
+              path.c_str(), bc == BoundaryCondition::Free ? "free" : "circle", M.triangleCount(), repeat, median(wall),
+              *std::min_element(wall.begin(), wall.end()), median(cpu), last.iterations, last.maxCurvatureError, last.flips,
+              last.euclideanFlips, last.invertedTriangles, last.areaDistortionRange);
+  return 0;
 }
 
 MeshBuffers subdivide(const MeshBuffers& M) {
@@ -108,6 +154,30 @@ void report(const char* name, const MeshBuffers& M, const FlatPatch& P, int samp
 }  // namespace
 
 int main(int argc, char** argv) {
+  if (argc > 1 && argv[1][0] != '-') {
+    BoundaryCondition bc = BoundaryCondition::Circle;
+    int repeat = 3;
+    bool pullback = false;
+    for (int i = 2; i < argc; ++i) {
+      if (!std::strcmp(argv[i], "--boundary") && i + 1 < argc) {
+        ++i;
+        bc = std::strcmp(argv[i], "free") == 0 ? BoundaryCondition::Free : BoundaryCondition::Circle;
+      } else if (!std::strcmp(argv[i], "--repeat") && i + 1 < argc) {
+        repeat = std::max(1, std::atoi(argv[++i]));
+      } else if (!std::strcmp(argv[i], "--pullback")) {
+        pullback = true;
+      } else {
+        std::fprintf(stderr, "usage: bench_flatten IN [--boundary circle|free] [--repeat N] [--pullback] | bench_flatten [--quick]\n");
+        return 2;
+      }
+    }
+    try {
+      return timeFile(argv[1], bc, repeat, pullback);
+    } catch (const Error& e) {
+      std::printf("{\"error\":\"%s\",\"message\":\"%s\"}\n", codeName(e.code()), e.what());
+      return 1;
+    }
+  }
   const bool quick = argc > 1 && std::strcmp(argv[1], "--quick") == 0;
   MeshBuffers face = readData("face.obj");
   MeshBuffers face2 = subdivide(face);

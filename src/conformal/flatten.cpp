@@ -237,6 +237,8 @@ FlatPatch flattenCompact(const MeshBuffers& patch, const FlattenOptions& options
   R.gaussBonnetError = flow.gaussBonnetError;
   R.boundaryLoops = int(T.loops.size());
   R.secondsFlow = since(t0);
+  R.flowProfile = flow.profile;
+  R.cornerAngleScale = flow.cornerAngleScale;
 
   // Normalize the scale: flat area = 3D area (Free keeps u = 0 on the boundary).
   std::vector<double> u = flow.u;
@@ -270,12 +272,14 @@ FlatPatch flattenCompact(const MeshBuffers& patch, const FlattenOptions& options
   R.invertedTriangles = L.invertedTriangles;
   R.boundaryCrossings = L.boundaryCrossings;
   R.layoutLengthError = L.maxEdgeLengthError;
-  if (options.requireValidLayout && (L.invertedTriangles > 0 || L.boundaryCrossings > 0 || !(L.maxEdgeLengthError <= 1e-3)))
+  if (options.requireValidLayout && (L.invertedTriangles > 0 || L.boundaryCrossings > 0 || !(L.maxEdgeLengthError <= 1e-3))) {
+    const std::string why = scaleDiagnosis(T, u, fo.boundary);
     fail(Code::NumericalFailure, Stage::Flatten,
          "flatten: the layout has " + std::to_string(L.invertedTriangles) + " inverted triangles, " +
              std::to_string(L.boundaryCrossings) + " boundary crossings and a relative edge length error of " +
-             std::to_string(L.maxEdgeLengthError) + " (area distortion too large for double precision: " +
-             "try the free boundary or split the patch)");
+             std::to_string(L.maxEdgeLengthError) + ": " +
+             (why.empty() ? std::string("the area distortion may be too large for double precision: try the free boundary or split the patch") : why));
+  }
 
   out.uv = L.xy;
   out.u = u;

@@ -44,6 +44,7 @@ struct FlattenReport {
   long long euclideanFlips = 0;       //!< flips to the intrinsic Delaunay triangulation of the input
   double seconds = 0.0;               //!< total wall time
   double secondsFlow = 0.0, secondsLayout = 0.0, secondsOverlay = 0.0;
+  conformal::FlowProfile flowProfile;  //!< where the flow's time went
   double gaussBonnetError = 0.0;      //!< |sum K - 2 pi chi|
   int invertedTriangles = 0;          //!< final intrinsic triangles with signed area <= 0 in the layout
   int boundaryCrossings = 0;          //!< intersecting boundary edge pairs in the layout (0: simple, disjoint)
@@ -57,6 +58,9 @@ struct FlattenReport {
   double areaDistortionMin = 1.0, areaDistortionMax = 1.0, areaDistortionRange = 1.0;
   size_t overlayCrossings = 0;        //!< input edge / final edge crossings in the overlay
   int boundaryLoops = 0;
+  //! Corners: the factor applied to the corner angles so that they close a polygon when every
+  //! outer vertex is a corner (Gauss–Bonnet; 1 when the angles were used as given).
+  double cornerAngleScale = 1.0;
 };
 
 struct FlatPatch {

@@ -2,7 +2,9 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
 #include <limits>
+#include <string>
 
 #include "conformal/triangle_geometry.h"
 #include "planar/predicates.h"
@@ -91,6 +93,31 @@ int countSegmentCrossings(const std::vector<double>& xy, const std::vector<std::
       }
   std::sort(hits.begin(), hits.end());
   return int(std::unique(hits.begin(), hits.end()) - hits.begin());
+}
+
+std::string scaleDiagnosis(const IT& T, const std::vector<double>& u, BoundaryCondition boundary) {
+  double area = 0.0, minEdge = std::numeric_limits<double>::infinity();
+  for (int f = 0; f < T.nF; ++f) {
+    double lam[3], ang[3];
+    for (int k = 0; k < 3; ++k) lam[k] = T.scaledLambda(3 * f + k, u);
+    anglesFromLogLengths(lam, ang);
+    area += 0.5 * std::exp(0.5 * (lam[1] + lam[2])) * std::sin(ang[0]);  // angle 0 lies between edges 1, 2
+    for (int k = 0; k < 3; ++k) minEdge = std::min(minEdge, std::exp(0.5 * lam[k]));
+  }
+  const double ratio = minEdge / std::sqrt(area);
+  if (ratio >= kMinRelativeEdgeLength) return "";
+  double umin = std::numeric_limits<double>::infinity(), umax = -umin;
+  for (double x : u) {
+    umin = std::min(umin, x);
+    umax = std::max(umax, x);
+  }
+  char buf[400];
+  std::snprintf(buf, sizeof buf,
+                "the %s map scales areas by factors e^{2u} spanning %.1e; its shortest edge is %.1e times the domain "
+                "size, beyond what double-precision coordinates resolve away from the layout's origin: %s",
+                boundaryName(boundary), std::exp(2.0 * (umax - umin)), ratio,
+                boundary == BoundaryCondition::Free ? "split the patch where it narrows" : "use the free boundary (u = 0), or split the patch where it narrows");
+  return buf;
 }
 
 LayoutResult layoutFlat(const IT& T, const std::vector<double>& u) {

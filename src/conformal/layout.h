@@ -1,9 +1,11 @@
 // conformesh — isometric layout of a flat intrinsic triangulation in the plane, and its checks.
 #pragma once
 
+#include <string>
 #include <vector>
 
 #include "conformal/intrinsic_triangulation.h"
+#include "conformal/ricci_flow.h"
 
 namespace conformesh::conformal {
 
@@ -21,6 +23,17 @@ struct LayoutResult {
 //! measure how well non-tree edges close up (holonomy, round-off), whether triangles are
 //! inverted, and whether the boundary loops are simple and pairwise disjoint.
 LayoutResult layoutFlat(const IntrinsicTriangulation& T, const std::vector<double>& u);
+
+//! Why a layout of T with the metric u may be beyond double precision, or "" when it is not
+//! suspect. Positions carry round-off relative to their distance from the layout's origin, so
+//! an edge shorter than kMinRelativeEdgeLength times sqrt(flat area) keeps its digits only near
+//! the origin (the central face). This happens when the conformal scale factor spans too many
+//! orders of magnitude: a round disk for a shape with long thin limbs crowds the limbs
+//! exponentially (alligator.obj: e^{2u} spans 1e47, its legs and tail at the rim). Used to
+//! explain a failed layout check or a gauge equation lost to round-off; not a check by itself
+//! (blade.off's free boundary map has edges 1e-20 of its size near the origin and lays out).
+constexpr double kMinRelativeEdgeLength = 1e-12;
+std::string scaleDiagnosis(const IntrinsicTriangulation& T, const std::vector<double>& u, BoundaryCondition boundary);
 
 //! Count intersecting pairs among segments (a_k, b_k) (indices into xy), ignoring pairs that
 //! share an endpoint. Uniform grid; O(n) expected for boundary polygons.

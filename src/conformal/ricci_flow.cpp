@@ -3,9 +3,12 @@
 #include <Eigen/Sparse>
 #include <Eigen/SparseCholesky>
 #include <algorithm>
+#include <chrono>
 #include <cmath>
+#include <cstdio>
 #include <string>
 
+#include "conformal/layout.h"
 #include "conformal/triangle_geometry.h"
 
 namespace conformesh::conformal {
@@ -13,6 +16,15 @@ namespace conformesh::conformal {
 namespace {
 
 using IT = IntrinsicTriangulation;
+using Clock = std::chrono::steady_clock;
+
+// Adds the wall time of its scope to a counter (phase profile of the flow).
+struct ScopedTimer {
+  double& acc;
+  Clock::time_point t0 = Clock::now();
+  explicit ScopedTimer(double& a) : acc(a) {}
+  ~ScopedTimer() { acc += std::chrono::duration<double>(Clock::now() - t0).count(); }
+};
 
 void faceAngles(const IT& T, int f, const std::vector<double>& u, double ang[3], bool* valid = nullptr) {
   double lam[3];
@@ -73,6 +85,60 @@ bool circumRadius(const std::vector<double>& c, double& R) {
   return true;
 }
 
+// Delaunay flips with the corner angles kept per face: every face's angles are computed once,
+// and again only for the two faces of each flip (the test of an edge reads two cached angles).
+// On return angle/valid describe the final triangulation for the metric u.
+long long flipToDelaunayWithAngles(IT& T, const std::vector<double>& u, long long maxFlips, bool euclidean,
+                                   std::vector<double>& angle, std::vector<char>& valid) {
+  constexpr double tol = 1e-12;
+  angle.resize(size_t(3) * T.nF);
+  valid.resize(T.nF);
+  for (int f = 0; f < T.nF; ++f) {
+    bool ok;
+    faceAngles(T, f, u, &angle[3 * size_t(f)], &ok);
+    valid[f] = ok;
+  }
+  std::vector<int> stack;
+  stack.reserve(T.nE);
+  std::vector<char> queued(T.nE, 0);
+  for (int e = 0; e < T.nE; ++e)
+    if (T.twin[T.edgeHalf[e]] >= 0) {
+      stack.push_back(e);
+      queued[e] = 1;
+    }
+  long long done = 0;
+  while (!stack.empty()) {
+    const int e = stack.back();
+    stack.pop_back();
+    queued[e] = 0;
+    if (!T.canFlip(e)) continue;
+    const int h0 = T.edgeHalf[e], t0 = T.twin[h0];
+    if (angle[h0] + angle[t0] <= kPi + tol) continue;
+    if (done >= maxFlips)
+      fail(Code::IterationLimit, Stage::Flatten, "flatten: Delaunay flips exceeded their cap (" + std::to_string(maxFlips) + ")");
+    if (euclidean)
+      T.flipEuclidean(e);
+    else
+      T.flip(e);
+    ++done;
+    const int h = T.edgeHalf[e], t = T.twin[h];
+    for (int f : {h / 3, t / 3}) {
+      bool ok;
+      faceAngles(T, f, u, &angle[3 * size_t(f)], &ok);
+      valid[f] = ok;
+    }
+    const int sides[4] = {IT::next(h), IT::prev(h), IT::next(t), IT::prev(t)};
+    for (int sd : sides) {
+      const int se = T.edge[sd];
+      if (T.twin[sd] >= 0 && !queued[se]) {
+        queued[se] = 1;
+        stack.push_back(se);
+      }
+    }
+  }
+  return done;
+}
+
 class Flow {
  public:
   Flow(IT& T, const FlowOptions& o, const ProgressFn& p) : T_(T), opt_(o), progress_(p) {}
@@ -87,13 +153,14 @@ class Flow {
   // Flip, angles, curvature, targets and the gradient for the current u. Returns false when a
   // triangle violates the triangle inequality.
   bool evaluate();
-  void assembleAndFactor();
+  void gatherGradient();  // grad_ from K_ and Kbar_ for the current unknowns
   long long maxFlips() const { return 200LL * T_.nE + 10000; }
 
   IT& T_;
   const FlowOptions& opt_;
   const ProgressFn& progress_;
   std::vector<double> u_, angle_, K_, Kbar_, grad_;
+  std::vector<char> valid_;  // per face: triangle inequality holds
   std::vector<int> free_;  // per vertex: unknown index or -1 (fixed)
   int nFree_ = 0;
   int outer_ = 0;
@@ -105,14 +172,38 @@ class Flow {
     std::vector<double> w;  // per loop edge: q / sqrt(1 - q^2), q = c / 2R
   };
   std::vector<LoopJacobian> jac_;
-  Eigen::VectorXd applyTargetJacobian(const Eigen::VectorXd& x) const;
-  Eigen::VectorXd gmres(const Eigen::VectorXd& b, int maxIt, double tol) const;
+  void applyTargetJacobian(const Eigen::VectorXd& x, Eigen::VectorXd& y) const;
+  // Newton's linear systems. The Hessian is the cotangent Laplacian L(u), applied matrix-free
+  // from per-halfedge weights; it is preconditioned by a sparse Cholesky factor of L at an
+  // earlier u. L changes little along the flow (a conformal scaling moves the angles only by
+  // O(h |grad u|) per triangle, and only a few flips happen), so a factor is reused for every
+  // Newton step and refreshed only when the preconditioned Krylov solver needs more than
+  // kFreshFactorIterations: inexact Newton (Dembo–Eisenstat–Steihaug 1982) with forcing term
+  // eta = min(1e-2, error), which keeps the local convergence quadratic.
+  static constexpr int kFreshFactorIterations = 25;
+  void computeWeights();
+  void applyL(const Eigen::VectorXd& x, Eigen::VectorXd& y) const;
+  void applyPreconditioner(const Eigen::VectorXd& r, Eigen::VectorXd& z);
+  void factor();
+  bool factorCovers() const;
+  bool pcg(const Eigen::VectorXd& b, Eigen::VectorXd& x, double tol, int maxIt);
+  bool gmres(const Eigen::VectorXd& b, Eigen::VectorXd& x, double tol, int maxIt);
+  bool solveNewton(const Eigen::VectorXd& b, Eigen::VectorXd& x, bool moving, double tol);
   std::vector<double> cornerKbar_;  // per vertex: NaN unless a corner
+  std::vector<double> w_;           // per halfedge: 1/2 cot of the opposite angle (Newton point)
   Eigen::SimplicialLDLT<Eigen::SparseMatrix<double>> solver_;
-  bool analysed_ = false;
-  long long flipsAtAnalyse_ = -1;
+  bool factored_ = false;
+  std::vector<int> factorIndex_;    // per vertex: unknown of the factored matrix, or -1
+  // The factor P L D L' P' as plain arrays for the preconditioner's solves: L's values in single
+  // precision (|L_ij| <= 1 for this diagonally dominant M-matrix, and a preconditioner needs no
+  // more digits; the Krylov solver works in double), which cuts the memory traffic that bounds
+  // the triangular solves by a third. slot_: per free unknown, its row in the permuted factor.
+  std::vector<int> lStart_, lRow_, slot_;
+  std::vector<float> lVal_;
+  std::vector<double> dInv_, y_;
   std::vector<Eigen::Triplet<double>> trip_;
   Eigen::SparseMatrix<double> L_;
+  FlowResult R_;
 };
 
 void Flow::setupBoundary() {
@@ -146,6 +237,45 @@ void Flow::setupBoundary() {
         fail(Code::InvalidArgument, Stage::Flatten, "flatten: corner angle must be in (0, 2 pi)");
       cornerKbar_[c.first] = kPi - c.second;
     }
+    // Gauss–Bonnet: the targets on the outer loop must turn by 2 pi in all (interior Kbar = 0,
+    // inner loops are circles). The smooth outer vertices take the rest, 2 pi - sum (pi -
+    // angle), in proportion to their share of the input's boundary length: fixed targets, so
+    // the energy stays convex and Newton converges quadratically (spreading by the current flat
+    // lengths instead made the targets move with u, and the frozen-target iteration could
+    // stall or diverge on jagged boundaries). When no smooth vertex exists (a jagged boundary:
+    // detectCorners marks every zigzag vertex), or the rest would give a smooth vertex an angle
+    // outside (0, 2 pi), the angles of a curved patch sum to (n - 2) pi + its total Gaussian
+    // curvature, which no straight-edged polygon has: every outer angle is then scaled by
+    // (n - 2) pi / sum so that they close (ratios kept, every angle stays positive).
+    if (opt_.corners.empty()) return;  // the circle
+    const auto& outerLoop = T_.loops[outer_];
+    const auto& outerEdges = T_.loopEdges[outer_];
+    const size_t n = outerLoop.size();
+    double sumC = 0.0, wRest = 0.0;
+    std::vector<double> share(n, 0.0);
+    for (size_t i = 0; i < n; ++i) {
+      const int v = outerLoop[i];
+      if (!std::isnan(cornerKbar_[v])) {
+        sumC += cornerKbar_[v];
+      } else {
+        share[i] = 0.5 * (std::exp(0.5 * T_.lambda[outerEdges[(i + n - 1) % n]]) + std::exp(0.5 * T_.lambda[outerEdges[i]]));
+        wRest += share[i];
+      }
+    }
+    const double rest = 2.0 * kPi - sumC;
+    bool feasible = wRest > 0.0;
+    for (size_t i = 0; i < n && feasible; ++i)
+      if (std::isnan(cornerKbar_[outerLoop[i]]) && !(std::fabs(rest * share[i] / wRest) < kPi)) feasible = false;
+    if (feasible) {
+      for (size_t i = 0; i < n; ++i)
+        if (std::isnan(cornerKbar_[outerLoop[i]])) cornerKbar_[outerLoop[i]] = rest * share[i] / wRest;
+    } else if (n >= 3) {
+      double sumAngle = 0.0;
+      for (int v : outerLoop) sumAngle += std::isnan(cornerKbar_[v]) ? kPi : kPi - cornerKbar_[v];
+      const double scale = (double(n) - 2.0) * kPi / sumAngle;
+      for (int v : outerLoop) cornerKbar_[v] = kPi - scale * (std::isnan(cornerKbar_[v]) ? kPi : kPi - cornerKbar_[v]);
+      R_.cornerAngleScale = scale;
+    }
   }
 }
 
@@ -168,7 +298,6 @@ void Flow::setGauge(int pins) {
   nFree_ = 0;
   for (int v = 0; v < T_.nV; ++v)
     if (free_[v] == 0) free_[v] = nFree_++;
-  analysed_ = false;
 }
 
 void Flow::updateTargets() {
@@ -193,20 +322,8 @@ void Flow::updateTargets() {
     if (int(k) == outer_ && opt_.boundary == BoundaryCondition::Corners)
       for (int v : loop)
         if (!std::isnan(cornerKbar_[v])) corners = true;
-    if (corners) {
-      double sumC = 0.0, wRest = 0.0;
-      for (size_t i = 0; i < n; ++i) {
-        if (!std::isnan(cornerKbar_[loop[i]]))
-          sumC += cornerKbar_[loop[i]];
-        else
-          wRest += 0.5 * (c[(i + n - 1) % n] + c[i]);
-      }
-      const double rest = 2.0 * kPi - sumC;
-      for (size_t i = 0; i < n; ++i) {
-        const int v = loop[i];
-        Kbar_[v] = !std::isnan(cornerKbar_[v]) ? cornerKbar_[v]
-                                               : (wRest > 0 ? rest * 0.5 * (c[(i + n - 1) % n] + c[i]) / wRest : 0.0);
-      }
+    if (corners) {  // fixed targets, set up once (setupBoundary)
+      for (int v : loop) Kbar_[v] = cornerKbar_[v];
       continue;
     }
     double R;
@@ -230,22 +347,35 @@ void Flow::updateTargets() {
 }
 
 bool Flow::evaluate() {
-  if (opt_.flips) flipToDelaunay(T_, u_, maxFlips());
-  const int bad = computeAngles(T_, u_, angle_);
+  ++R_.profile.evaluations;
+  int bad = 0;
+  if (opt_.flips) {
+    ScopedTimer tm(R_.profile.flips);
+    flipToDelaunayWithAngles(T_, u_, maxFlips(), false, angle_, valid_);
+    for (char ok : valid_) bad += !ok;
+  } else {
+    ScopedTimer tm(R_.profile.angles);
+    bad = computeAngles(T_, u_, angle_);
+  }
+  ScopedTimer tm(R_.profile.angles);
   K_ = vertexCurvature(T_, angle_);
   updateTargets();
+  gatherGradient();
+  return bad == 0;
+}
+
+void Flow::gatherGradient() {
   grad_.assign(nFree_, 0.0);
   for (int v = 0; v < T_.nV; ++v)
     if (free_[v] >= 0) grad_[free_[v]] = K_[v] - Kbar_[v];
-  return bad == 0;
 }
 
 // d Kbar / du applied to x (free unknowns). For the inscribed polygon, with q_e = c_e / 2R,
 // Kbar_i = s (asin q_{i-1} + asin q_i), dc_e / c_e = (du_a + du_b) / 2 and R fixed by
 // sum 2 asin q_e = 2 pi: dKbar_i = s sum_{e at i} w_e (dc_e/c_e - dR/R),
 // dR/R = sum_e w_e dc_e/c_e / sum_e w_e, w_e = q_e / sqrt(1 - q_e^2).
-Eigen::VectorXd Flow::applyTargetJacobian(const Eigen::VectorXd& x) const {
-  Eigen::VectorXd y = Eigen::VectorXd::Zero(nFree_);
+void Flow::applyTargetJacobian(const Eigen::VectorXd& x, Eigen::VectorXd& y) const {
+  y.setZero(nFree_);
   std::vector<double> dc;
   for (const LoopJacobian& J : jac_) {
     const auto& loop = T_.loops[J.loop];
@@ -265,23 +395,169 @@ Eigen::VectorXd Flow::applyTargetJacobian(const Eigen::VectorXd& x) const {
       y[free_[v]] += J.sgn * (J.w[im] * (dc[im] - dR) + J.w[i] * (dc[i] - dR));
     }
   }
-  return y;
 }
 
-// Solve (L - dKbar/du) x = L b for x, i.e. (I - L^{-1} B) x = b, by GMRES (Saad–Schultz 1986)
-// preconditioned with the factorization of L: the exact Newton step when the targets move.
-Eigen::VectorXd Flow::gmres(const Eigen::VectorXd& b, int maxIt, double tol) const {
-  const double beta = b.norm();
-  if (!(beta > 0)) return b;
+void Flow::computeWeights() {
+  w_.resize(size_t(3) * T_.nF);
+  for (int h = 0; h < 3 * T_.nF; ++h) w_[h] = 0.5 * cotOfAngle(angle_[h]);
+}
+
+// y = L x over the free unknowns (fixed vertices are zero in x): L_ii = sum w, L_ij = -w.
+void Flow::applyL(const Eigen::VectorXd& x, Eigen::VectorXd& y) const {
+  y.setZero(nFree_);
+  const int nH = 3 * T_.nF;
+  for (int h = 0; h < nH; ++h) {
+    const int fi = free_[T_.vert[h]], fj = free_[T_.tip(h)];
+    const double d = w_[h] * ((fi >= 0 ? x[fi] : 0.0) - (fj >= 0 ? x[fj] : 0.0));
+    if (fi >= 0) y[fi] += d;
+    if (fj >= 0) y[fj] -= d;
+  }
+}
+
+// Whether every current unknown is an unknown of the factored matrix. The factor is built over
+// the vertices that no gauge fixes (Free: all but the outer loop; otherwise all but the first
+// outer vertex), so for the 3-pin Möbius gauge it is the inverse of a slightly larger matrix,
+// restricted: a rank-2 difference that the Krylov solver absorbs in a couple of iterations.
+bool Flow::factorCovers() const {
+  if (!factored_) return false;
+  for (int v = 0; v < T_.nV; ++v)
+    if (free_[v] >= 0 && factorIndex_[v] < 0) return false;
+  return true;
+}
+
+void Flow::factor() {
+  ScopedTimer ta(R_.profile.assemble);
+  factorIndex_.assign(T_.nV, -1);
+  int n = 0;
+  const auto& outerLoop = T_.loops[outer_];
+  std::vector<char> fixed(T_.nV, 0);
+  if (opt_.boundary == BoundaryCondition::Free)
+    for (int v : outerLoop) fixed[v] = 1;
+  else
+    fixed[outerLoop[0]] = 1;
+  for (int v = 0; v < T_.nV; ++v)
+    if (!fixed[v]) factorIndex_[v] = n++;
+  trip_.clear();
+  trip_.reserve(size_t(T_.nF) * 12);
+  for (int h = 0; h < 3 * T_.nF; ++h) {
+    const double w = w_[h];
+    const int fi = factorIndex_[T_.vert[h]], fj = factorIndex_[T_.tip(h)];
+    if (fi >= 0) trip_.emplace_back(fi, fi, w);
+    if (fj >= 0) trip_.emplace_back(fj, fj, w);
+    if (fi >= 0 && fj >= 0) {
+      trip_.emplace_back(fi, fj, -w);
+      trip_.emplace_back(fj, fi, -w);
+    }
+  }
+  L_.resize(n, n);
+  L_.setFromTriplets(trip_.begin(), trip_.end());
+  {
+    // The pattern changes with every flip, and one factorization is the common case: no reuse.
+    ScopedTimer tz(R_.profile.analyze);
+    ++R_.profile.analyses;
+    solver_.analyzePattern(L_);
+  }
+  ScopedTimer tf(R_.profile.factor);
+  ++R_.profile.factorizations;
+  solver_.factorize(L_);
+  if (solver_.info() != Eigen::Success)
+    fail(Code::NumericalFailure, Stage::Flatten, "flatten: the cotangent Laplacian could not be factorized");
+  factored_ = true;
+  const auto& Lf = solver_.matrixL().nestedExpression();  // unit lower triangle, column-major
+  lStart_.assign(Lf.outerIndexPtr(), Lf.outerIndexPtr() + n + 1);
+  lRow_.assign(Lf.innerIndexPtr(), Lf.innerIndexPtr() + lStart_[n]);
+  lVal_.resize(lStart_[n]);
+  for (int p = 0; p < lStart_[n]; ++p) {
+    const double x = Lf.valuePtr()[p];
+    if (!(std::fabs(x) < 1e30)) fail(Code::NumericalFailure, Stage::Flatten, "flatten: the Laplacian factor is not finite");
+    lVal_[p] = float(x);
+  }
+  const auto& D = solver_.vectorD();
+  dInv_.resize(n);
+  for (int i = 0; i < n; ++i) dInv_[i] = 1.0 / D[i];
+  const auto& perm = solver_.permutationP().indices();
+  std::vector<int> slotOfFactor(n);
+  for (int i = 0; i < n; ++i) slotOfFactor[i] = perm.size() == n ? perm[i] : i;
+  slot_.assign(T_.nV, -1);
+  for (int v = 0; v < T_.nV; ++v)
+    if (factorIndex_[v] >= 0) slot_[v] = slotOfFactor[factorIndex_[v]];
+  y_.resize(n);
+}
+
+// z = (P L D L' P')^{-1} r, restricted to the current unknowns.
+void Flow::applyPreconditioner(const Eigen::VectorXd& r, Eigen::VectorXd& z) {
+  ++R_.profile.solves;
+  const int n = int(y_.size());
+  std::fill(y_.begin(), y_.end(), 0.0);
+  for (int v = 0; v < T_.nV; ++v)
+    if (free_[v] >= 0) y_[slot_[v]] = r[free_[v]];
+  double* y = y_.data();
+  const int* S = lStart_.data();
+  const int* I = lRow_.data();
+  const float* X = lVal_.data();
+  for (int j = 0; j < n; ++j) {
+    const double yj = y[j];
+    if (yj != 0.0)
+      for (int p = S[j]; p < S[j + 1]; ++p) y[I[p]] -= double(X[p]) * yj;
+  }
+  for (int j = 0; j < n; ++j) y[j] *= dInv_[j];
+  for (int j = n - 1; j >= 0; --j) {
+    double yj = y[j];
+    for (int p = S[j]; p < S[j + 1]; ++p) yj -= double(X[p]) * y[I[p]];
+    y[j] = yj;
+  }
+  z.resize(nFree_);
+  for (int v = 0; v < T_.nV; ++v)
+    if (free_[v] >= 0) z[free_[v]] = y[slot_[v]];
+}
+
+// Preconditioned conjugate gradients (Hestenes–Stiefel 1952) for L x = b from x = 0: every
+// iterate is a descent direction of the convex energy (b . x_k = x_k' L x_k > 0).
+bool Flow::pcg(const Eigen::VectorXd& b, Eigen::VectorXd& x, double tol, int maxIt) {
+  x.setZero(nFree_);
+  Eigen::VectorXd r = b, z, p, q;
+  const double bn = b.norm();
+  if (!(bn > 0)) return true;
+  applyPreconditioner(r, z);
+  p = z;
+  double rz = r.dot(z);
+  for (int k = 0; k < maxIt; ++k) {
+    applyL(p, q);
+    const double pq = p.dot(q);
+    if (!(pq > 0)) return false;
+    const double a = rz / pq;
+    x += a * p;
+    r -= a * q;
+    if (r.norm() <= tol * bn) return true;
+    applyPreconditioner(r, z);
+    const double rz2 = r.dot(z);
+    p = z + (rz2 / rz) * p;
+    rz = rz2;
+  }
+  return false;
+}
+
+// (L - dKbar/du) x = b by GMRES (Saad–Schultz 1986), left-preconditioned with the factor:
+// the exact Newton step when the (circle) targets move with u.
+bool Flow::gmres(const Eigen::VectorXd& b, Eigen::VectorXd& x, double tol, int maxIt) {
+  Eigen::VectorXd r0;
+  applyPreconditioner(b, r0);
+  const double beta = r0.norm();
+  x.setZero(nFree_);
+  if (!(beta > 0)) return true;
   std::vector<Eigen::VectorXd> V;
-  V.push_back(b / beta);
+  V.push_back(r0 / beta);
   Eigen::MatrixXd H = Eigen::MatrixXd::Zero(maxIt + 1, maxIt);
   std::vector<double> cs(maxIt), sn(maxIt);
-  Eigen::VectorXd g = Eigen::VectorXd::Zero(maxIt + 1);
+  Eigen::VectorXd g = Eigen::VectorXd::Zero(maxIt + 1), Av, Bv, w;
   g[0] = beta;
   int m = 0;
+  bool converged = false;
   for (int j = 0; j < maxIt; ++j) {
-    Eigen::VectorXd w = V[j] - solver_.solve(applyTargetJacobian(V[j]));
+    applyL(V[j], Av);
+    applyTargetJacobian(V[j], Bv);
+    Av -= Bv;
+    applyPreconditioner(Av, w);
     for (int i = 0; i <= j; ++i) {
       H(i, j) = w.dot(V[i]);
       w -= H(i, j) * V[i];
@@ -301,44 +577,42 @@ Eigen::VectorXd Flow::gmres(const Eigen::VectorXd& b, int maxIt, double tol) con
     g[j + 1] = -sn[j] * g[j];
     g[j] = cs[j] * g[j];
     m = j + 1;
-    if (std::fabs(g[j + 1]) <= tol * beta || !(hj1 > 1e-300)) break;
+    if (std::fabs(g[j + 1]) <= tol * beta || !(hj1 > 1e-300)) {
+      converged = true;
+      break;
+    }
     V.push_back(w / hj1);
   }
   Eigen::VectorXd y = H.topLeftCorner(m, m).triangularView<Eigen::Upper>().solve(g.head(m));
-  Eigen::VectorXd x = Eigen::VectorXd::Zero(b.size());
   for (int i = 0; i < m; ++i) x += y[i] * V[i];
-  return x;
+  return converged;
 }
 
-void Flow::assembleAndFactor() {
-  trip_.clear();
-  trip_.reserve(size_t(T_.nE) * 4 + nFree_);
-  for (int h = 0; h < 3 * T_.nF; ++h) {
-    const int i = T_.vert[h], j = T_.tip(h);
-    if (i == j) continue;
-    const double w = 0.5 * cotOfAngle(angle_[h]);
-    const int fi = free_[i], fj = free_[j];
-    if (fi >= 0) trip_.emplace_back(fi, fi, w);
-    if (fj >= 0) trip_.emplace_back(fj, fj, w);
-    if (fi >= 0 && fj >= 0) {
-      trip_.emplace_back(fi, fj, -w);
-      trip_.emplace_back(fj, fi, -w);
+// Newton step: L x = b (frozen targets) or (L - dKbar/du) x = b (moving targets), to relative
+// tolerance tol. A stale factor that needs more than kFreshFactorIterations is refreshed.
+bool Flow::solveNewton(const Eigen::VectorXd& b, Eigen::VectorXd& x, bool moving, double tol) {
+  computeWeights();
+  bool fresh = false;
+  if (!factorCovers()) {
+    factor();
+    fresh = true;
+  }
+  for (int attempt = 0; attempt < 2; ++attempt) {
+    const int cap = fresh ? 150 : kFreshFactorIterations;
+    bool ok;
+    {
+      ScopedTimer ts(R_.profile.solve);
+      ok = moving ? gmres(b, x, tol, cap) : pcg(b, x, tol, cap);
     }
+    if (ok || fresh) return ok;
+    factor();
+    fresh = true;
   }
-  L_.resize(nFree_, nFree_);
-  L_.setFromTriplets(trip_.begin(), trip_.end());
-  if (!analysed_ || flipsAtAnalyse_ != T_.flips) {
-    solver_.analyzePattern(L_);
-    analysed_ = true;
-    flipsAtAnalyse_ = T_.flips;
-  }
-  solver_.factorize(L_);
-  if (solver_.info() != Eigen::Success)
-    fail(Code::NumericalFailure, Stage::Flatten, "flatten: the cotangent Laplacian could not be factorized");
+  return false;
 }
 
 FlowResult Flow::run() {
-  FlowResult R;
+  FlowResult& R = R_;
   setupBoundary();
   R.outerLoop = outer_;
   u_.assign(T_.nV, 0.0);
@@ -361,7 +635,7 @@ FlowResult Flow::run() {
   if (circle_) {
     exactMode = true;
     setGauge(3);
-    evaluate();
+    gatherGradient();  // same u: only the unknowns changed
     err = maxAbs(grad_);
   }
   while (err > opt_.tolerance) {
@@ -373,16 +647,14 @@ FlowResult Flow::run() {
       reported = std::max(reported, fr);
       if (!progress_(Stage::Flatten, 0.8 * reported)) fail(Code::Cancelled, Stage::Flatten, "flatten: cancelled");
     }
-    assembleAndFactor();
     rhs.resize(nFree_);
     for (int i = 0; i < nFree_; ++i) rhs[i] = -grad_[i];
-    delta = solver_.solve(rhs);
-    // Moving (circle) targets: the exact Newton step (GMRES on L - dKbar/du, preconditioned by
-    // L) converges quadratically but needs the Möbius gauge (3 pins); far from the solution its
-    // residual line search may stall, and then Newton with frozen targets (1 pin, a line search
-    // on the convex energy) takes over until the error is small.
-    bool movingTargets = exactMode;
-    if (movingTargets) delta = gmres(delta, 150, 1e-10);
+    // Moving (circle) targets: the exact Newton step (GMRES on L - dKbar/du) converges
+    // quadratically but needs the Möbius gauge (3 pins); far from the solution its residual
+    // line search may stall, and then Newton with frozen targets (1 pin, a line search on the
+    // convex energy) takes over until the error is small.
+    const bool movingTargets = exactMode;
+    solveNewton(rhs, delta, movingTargets, std::clamp(err, 1e-12, 1e-2));
     double g0 = 0.0;
     for (int i = 0; i < nFree_; ++i) g0 += grad_[i] * grad_[i];
     double d0 = 0.0;
@@ -440,7 +712,7 @@ FlowResult Flow::run() {
     if (circle_ && !exactMode && exactFailures < 3 && err < 1e-3) {
       exactMode = true;
       setGauge(3);
-      evaluate();
+      gatherGradient();
       err = maxAbs(grad_);
     }
     R.residuals.push_back(err);
@@ -451,6 +723,17 @@ FlowResult Flow::run() {
   for (int v = 0; v < T_.nV; ++v)
     if (!(opt_.boundary == BoundaryCondition::Free && T_.boundaryVertex[v] && std::find(T_.loops[outer_].begin(), T_.loops[outer_].end(), v) != T_.loops[outer_].end()))
       R.maxError = std::max(R.maxError, std::fabs(K_[v] - Kbar_[v]));
+  if (!(R.maxError <= opt_.tolerance)) {
+    // The free unknowns converged but an equation held by the gauge did not (the pinned vertices
+    // of the Möbius gauge): in exact arithmetic it holds automatically, so round-off decided.
+    const std::string why = scaleDiagnosis(T_, u_, opt_.boundary);
+    if (!why.empty())
+      fail(Code::NumericalFailure, Stage::Flatten, "flatten: the gauge's pinned vertices keep a curvature error of " + std::to_string(R.maxError) + ": " + why);
+    char buf[160];
+    std::snprintf(buf, sizeof buf, "flatten: the curvature error at the gauge's pinned vertices is %.2e (tolerance %.1e)", R.maxError,
+                  opt_.tolerance);
+    fail(Code::NotConverged, Stage::Flatten, buf);
+  }
   double sumK = 0.0;
   for (double k : K_) sumK += k;
   const double chi = double(T_.nV) - T_.nE + T_.nF;
@@ -458,7 +741,7 @@ FlowResult Flow::run() {
   R.flips = T_.flips - flips0;
   R.u = u_;
   R.Kbar = Kbar_;
-  return R;
+  return std::move(R_);
 }
 
 }  // namespace
@@ -482,39 +765,9 @@ std::vector<double> vertexCurvature(const IT& T, const std::vector<double>& angl
 }
 
 long long flipToDelaunay(IT& T, const std::vector<double>& u, long long maxFlips, bool euclidean) {
-  constexpr double tol = 1e-12;
-  std::vector<int> stack;
-  stack.reserve(T.nE);
-  std::vector<char> queued(T.nE, 0);
-  for (int e = 0; e < T.nE; ++e)
-    if (T.twin[T.edgeHalf[e]] >= 0) {
-      stack.push_back(e);
-      queued[e] = 1;
-    }
-  long long done = 0;
-  while (!stack.empty()) {
-    const int e = stack.back();
-    stack.pop_back();
-    queued[e] = 0;
-    if (!T.canFlip(e) || edgeIsDelaunay(T, e, u, tol)) continue;
-    if (done >= maxFlips)
-      fail(Code::IterationLimit, Stage::Flatten, "flatten: Delaunay flips exceeded their cap (" + std::to_string(maxFlips) + ")");
-    if (euclidean)
-      T.flipEuclidean(e);
-    else
-      T.flip(e);
-    ++done;
-    const int h = T.edgeHalf[e], t = T.twin[h];
-    const int sides[4] = {IT::next(h), IT::prev(h), IT::next(t), IT::prev(t)};
-    for (int s : sides) {
-      const int se = T.edge[s];
-      if (T.twin[s] >= 0 && !queued[se]) {
-        queued[se] = 1;
-        stack.push_back(se);
-      }
-    }
-  }
-  return done;
+  std::vector<double> angle;
+  std::vector<char> valid;
+  return flipToDelaunayWithAngles(T, u, maxFlips, euclidean, angle, valid);
 }
 
 bool isDelaunay(const IT& T, const std::vector<double>& u) {

@@ -26,8 +26,15 @@ namespace conformesh::conformal {
 //!  Free:    u = 0 on the outer loop (Dirichlet; least area distortion), inner loops circles.
 //!  Corners: Kbar = pi - angle at the given corners of the outer loop; the rest of the outer
 //!           turning (2 pi - sum) is spread over the other outer vertices by arc length (0 when
-//!           the corners sum to 2 pi: a straight-edged polygon); inner loops circles.
+//!           the corners sum to 2 pi: a straight-edged polygon); inner loops circles. When every
+//!           outer vertex is a corner, the angles are scaled by (n - 2) pi / sum to satisfy
+//!           Gauss–Bonnet (FlowResult::cornerAngleScale).
 enum class BoundaryCondition { Circle, Free, Corners };
+
+//! "circle", "free boundary" or "corner-preserving", for messages.
+inline const char* boundaryName(BoundaryCondition b) {
+  return b == BoundaryCondition::Circle ? "circle" : b == BoundaryCondition::Free ? "free boundary" : "corner-preserving";
+}
 
 struct FlowOptions {
   BoundaryCondition boundary = BoundaryCondition::Circle;
@@ -37,6 +44,17 @@ struct FlowOptions {
   double tolerance = 1e-9;    //!< stop at max |K - Kbar| <= tolerance (radians)
   int maxIterations = 100;    //!< Newton iterations cap -> Code::IterationLimit
   int maxHalvings = 40;       //!< line search cap -> Code::NotConverged
+};
+
+//! Where the flow spends its time (wall seconds per phase, and counts), for benchmarks.
+struct FlowProfile {
+  double flips = 0;      //!< Delaunay flip passes
+  double angles = 0;     //!< angles, curvature, targets
+  double assemble = 0;   //!< cotangent Laplacian values
+  double analyze = 0;    //!< symbolic analysis (ordering, elimination tree)
+  double factor = 0;     //!< numeric factorization
+  double solve = 0;      //!< triangular solves, GMRES included
+  int evaluations = 0, analyses = 0, factorizations = 0, solves = 0;
 };
 
 struct FlowResult {
@@ -49,12 +67,20 @@ struct FlowResult {
   double gaussBonnetError = 0.0;  //!< |sum K - 2 pi chi| at the end
   int outerLoop = 0;              //!< index of the outer loop in T.loops
   std::vector<double> Kbar;       //!< final target curvature per vertex
+  //! Corners: factor applied to the corner angles to satisfy Gauss–Bonnet when every outer
+  //! vertex is a corner (1: the angles were used as given).
+  double cornerAngleScale = 1.0;
+  FlowProfile profile;
 };
 
-//! Run Newton's method on T (flipped in place). Throws conformesh::Error (stage Flatten):
-//! IterationLimit (iteration or flip cap), NotConverged (line search stalls, e.g. without flips
-//! when the triangle inequality breaks), NumericalFailure (factorization), InvalidArgument (bad
-//! corners), Cancelled (progress returned false).
+//! Run Newton's method on T (flipped in place). The Newton systems are solved by preconditioned
+//! Krylov methods with one sparse Cholesky factor of the Laplacian reused across iterations
+//! (see ricci_flow.cpp). Throws conformesh::Error (stage Flatten): IterationLimit (iteration or
+//! flip cap), NotConverged (line search stalls, e.g. without flips when the triangle inequality
+//! breaks; or an equation held by the gauge misses the tolerance), NumericalFailure
+//! (factorization; or the gauge equation is lost because the scale factors span more than double
+//! precision resolves, with the numbers), InvalidArgument (bad corners), Cancelled (progress
+//! returned false).
 FlowResult runRicciFlow(IntrinsicTriangulation& T, const FlowOptions& options, const ProgressFn& progress = {});
 
 //! Corner angles (angle[h] opposite halfedge h) for the metric u; returns the number of faces

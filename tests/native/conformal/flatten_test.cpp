@@ -96,6 +96,18 @@ void checkPullback(const MeshBuffers& M, const FlatPatch& P, int samples, unsign
   CHECK(worstMargin >= -1e-9);
 }
 
+// Free boundary: converged, a valid layout, and 10,000 pulled-back points on the input surface.
+FlatPatch flattenFreeValid(const MeshBuffers& M, unsigned seed) {
+  FlattenOptions o;
+  o.boundary = BoundaryCondition::Free;
+  FlatPatch P = flatten(M, o);
+  CHECK(P.report.maxCurvatureError <= 1e-9);
+  CHECK(P.report.invertedTriangles == 0);
+  CHECK(P.report.boundaryCrossings == 0);
+  checkPullback(M, P, 10000, seed);
+  return P;
+}
+
 TEST_CASE("flatten: planar disk with slivers stays similar to itself (flips + exact pull-back)") {
   // Free boundary (u = 0 on the boundary): the input is the unique solution, reached through a
   // non-Delaunay input (Ptolemy flips change the metric, Newton must bring it back).
@@ -191,14 +203,7 @@ TEST_CASE("flatten data: holes.off (7 loops) -> circle domain; mech-holes-shark 
     checkPullback(M, P, 10000, 11);
   }
   {
-    MeshBuffers M = readData("mech-holes-shark.off");
-    FlattenOptions o;
-    o.boundary = BoundaryCondition::Free;
-    FlatPatch P = flatten(M, o);
-    CHECK(P.report.maxCurvatureError <= 1e-9);
-    CHECK(P.report.invertedTriangles == 0);
-    CHECK(P.report.boundaryCrossings == 0);
-    checkPullback(M, P, 10000, 12);
+    flattenFreeValid(readData("mech-holes-shark.off"), 12);
   }
 }
 
@@ -270,4 +275,86 @@ TEST_CASE("flatten: bad input gets a clear status") {
   o.maxIterations = 1;
   try { flatten(testmesh::sphericalCap(6, 20, 1.5), o); FAIL("expected IterationLimit"); }
   catch (const Error& e) { CHECK(e.code() == Code::IterationLimit); }
+}
+
+namespace {
+// Interior angle of the laid-out outer loop at its i-th vertex (domain on the left).
+double layoutAngle(const FlatPatch& P, size_t i) {
+  const auto& loop = P.boundaryLoops[0];
+  const size_t n = loop.size();
+  const double* v = &P.uv[2 * size_t(loop[i])];
+  const double* a = &P.uv[2 * size_t(loop[(i + 1) % n])];
+  const double* b = &P.uv[2 * size_t(loop[(i + n - 1) % n])];
+  const double ax = a[0] - v[0], ay = a[1] - v[1], bx = b[0] - v[0], by = b[1] - v[1];
+  const double t = std::atan2(ax * by - ay * bx, ax * bx + ay * by);
+  return t < 0 ? t + 2 * M_PI : t;
+}
+}  // namespace
+
+TEST_CASE("flatten: jagged boundary, every zigzag vertex a corner: angles scaled to close the polygon") {
+  // On a curved patch the 3D angles of a staircase boundary do not sum to (n - 2) pi
+  // (Gauss–Bonnet): the targets are infeasible as given, and used to leave the whole defect at
+  // the pinned vertex. They are scaled to close; the layout has exactly the scaled angles.
+  MeshBuffers M = testmesh::staircase(12, 5, 1.5);
+  FlattenOptions o;
+  o.boundary = BoundaryCondition::Corners;
+  o.corners = detectCorners(M, 1e-3);
+  FlatPatch P = flatten(M, o);
+  REQUIRE(P.boundaryLoops.size() == 1);
+  CHECK(o.corners.size() == P.boundaryLoops[0].size());  // every outer vertex is a corner
+  CHECK(std::fabs(P.report.cornerAngleScale - 1) > 1e-3);
+  CHECK(P.report.maxCurvatureError <= 1e-9);
+  CHECK(P.report.gaussBonnetError <= 1e-9);
+  CHECK(P.report.invertedTriangles == 0);
+  double worst = 0;
+  const auto& loop = P.boundaryLoops[0];
+  for (size_t i = 0; i < loop.size(); ++i)
+    for (const auto& c : o.corners)
+      if (c.first == loop[i]) worst = std::max(worst, std::fabs(layoutAngle(P, i) - P.report.cornerAngleScale * c.second));
+  CHECK(worst < 1e-8);
+  checkPullback(M, P, 2000, 15);
+}
+
+TEST_CASE("flatten: jagged boundary with smooth stretches converges quadratically (fixed targets)") {
+  // 10 degrees: the staircase steps are corners, the straight grid sides are smooth and take the
+  // Gauss–Bonnet rest by input arc length. Targets spread by the current flat lengths moved
+  // with u and the frozen-target Newton iteration went up and down for 27 iterations here.
+  for (double c : {1.5, 3.0, 6.0}) {
+    MeshBuffers M = testmesh::staircase(12, 5, c);
+    FlattenOptions o;
+    o.boundary = BoundaryCondition::Corners;
+    o.corners = detectCorners(M, 10 * M_PI / 180);
+    REQUIRE(o.corners.size() > 4);
+    FlatPatch P = flatten(M, o);
+    const auto& r = P.report.residuals;
+    CHECK(r.back() <= 1e-9);
+    CHECK(P.report.invertedTriangles == 0);
+    for (size_t k = 0; k + 1 < r.size(); ++k)
+      if (r[k] < 1e-2 && r[k + 1] > 1e-13) CHECK(r[k + 1] <= 10.0 * r[k] * r[k]);
+    // Every corner keeps its 3D angle (the smooth vertices absorbed the Gauss–Bonnet rest).
+    CHECK(P.report.cornerAngleScale == 1.0);
+    const auto& loop = P.boundaryLoops[0];
+    double worst = 0;
+    for (size_t i = 0; i < loop.size(); ++i)
+      for (const auto& cr : o.corners)
+        if (cr.first == loop[i]) worst = std::max(worst, std::fabs(layoutAngle(P, i) - cr.second));
+    CHECK(worst < 1e-8);
+  }
+}
+
+TEST_CASE("flatten data: alligator circle needs more range than doubles hold; free boundary lays out") {
+  // The round disk crowds the alligator's legs and tail exponentially (Schwarz–Christoffel
+  // crowding): e^{2u} spans ~1e47, edges ~1e-24 of the domain. No double-precision layout can
+  // hold that: a NumericalFailure that says so, with the numbers.
+  MeshBuffers M = readData("alligator.obj");
+  try {
+    flatten(M);
+    FAIL("the circle map of alligator.obj was expected to exceed double precision");
+  } catch (const Error& e) {
+    std::printf("alligator circle: %s: %s\n", codeName(e.code()), e.what());
+    CHECK(e.code() == Code::NumericalFailure);
+    CHECK(std::string(e.what()).find("e^{2u} spanning") != std::string::npos);
+  }
+  const FlatPatch P = flattenFreeValid(M, 16);
+  CHECK(P.report.areaDistortionRange < 1e6);
 }

@@ -148,3 +148,29 @@ inline MeshBuffers needleGrid(double len, int nx, int ny, double bend) {
   return M;
 }
 }  // namespace conformesh::testmesh
+
+namespace conformesh::testmesh {
+//! A jagged patch: the n x n unit grid (cells split by a diagonal) without the cells with
+//! i + j < k or (n-1-i) + (n-1-j) < k, so two opposite corners become staircases of 90 and
+//! 270 degree turns, lifted onto the paraboloid z = c ((x - 1/2)^2 + (y - 1/2)^2).
+inline MeshBuffers staircase(int n, int k, double c) {
+  MeshBuffers M;
+  std::vector<int> id(size_t(n + 1) * (n + 1), -1);
+  auto vertex = [&](int i, int j) {
+    int& v = id[size_t(i) * (n + 1) + j];
+    if (v < 0) {
+      v = int(M.positions.size() / 3);
+      const double x = double(i) / n, y = double(j) / n;
+      M.positions.insert(M.positions.end(), {x, y, c * ((x - 0.5) * (x - 0.5) + (y - 0.5) * (y - 0.5))});
+    }
+    return uint32_t(v);
+  };
+  for (int i = 0; i < n; ++i)
+    for (int j = 0; j < n; ++j) {
+      if (i + j < k || (n - 1 - i) + (n - 1 - j) < k) continue;
+      const uint32_t a = vertex(i, j), b = vertex(i + 1, j), d = vertex(i + 1, j + 1), e = vertex(i, j + 1);
+      M.triangles.insert(M.triangles.end(), {a, b, d, a, d, e});
+    }
+  return M;
+}
+}  // namespace conformesh::testmesh
