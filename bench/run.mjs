@@ -476,6 +476,31 @@ function sectionWasm() {
     }
     sec.rows.push(row);
   }
+  // Remesh (issue 6): fandisk at 0.004·diagonal, no Hausdorff. Native: the CLI's own remesh time
+  // (report seconds.total), median of REPEAT processes. WASM: the package module under Node
+  // (bench/tools/wasm_remesh.mjs), the first call of a fresh instance and the median of the later
+  // calls in the same process.
+  {
+    const fandisk = path.join(DATA, 'fandisk.off');
+    const native = cliFor('remesh');
+    const wasmScript = path.join(ROOT, 'bench/tools/wasm_remesh.mjs');
+    const row = { tool: 'remesh fandisk 0.004' };
+    if (!native || !existsSync(path.join(ROOT, 'dist/index.js'))) {
+      row.status = `${NOT_YET}: ${!native ? 'conformesh remesh' : 'dist/ (npm run build)'}`;
+      rows.push([row.tool, NOT_YET, NOT_YET, null]);
+    } else {
+      const nat = repeatRun(native, ['remesh', fandisk, '-o', path.join(WORK, 'wasm-remesh-native.obj'), '--edge-length-rel', '0.004', '--no-hausdorff', '--json'], REPEAT, { timeout: 600 });
+      const totals = nat.ok ? nat.runs.map((r) => Number(r.json?.seconds?.total)) : [];
+      row.native = { ok: nat.ok, seconds: totals.length ? median(totals) : null, triangles: nat.json?.triangles ?? null, cmd: nat.cmd };
+      const w = run(process.execPath, ['--no-experimental-fetch', wasmScript, fandisk, '0.004', String(Math.max(3, REPEAT))], { timeout: 900 });
+      row.wasm = { ok: w.ok, first: w.json?.first ?? null, seconds: w.json?.seconds ?? null, init: w.json?.init ?? null, error: w.ok ? undefined : w.stderr.slice(-500) };
+      row.ratioWasmToNative = ratio(row.wasm.seconds, row.native.seconds);
+      row.ratioFirstCallToNative = ratio(row.wasm.first, row.native.seconds);
+      rows.push([`${row.tool} (later calls)`, row.native.seconds ?? 'failed', row.wasm.seconds ?? 'failed', row.ratioWasmToNative]);
+      rows.push([`${row.tool} (first call)`, row.native.seconds ?? 'failed', row.wasm.first ?? 'failed', row.ratioFirstCallToNative]);
+    }
+    sec.rows.push(row);
+  }
   table(`wasm vs native: median of ${REPEAT}`, ['program', 'native s', 'wasm s', 'wasm/native'], rows);
   return sec;
 }

@@ -128,6 +128,14 @@ val remeshJs(val positions, val triangles, val vertexSizing, val featureEdges, v
     o.computeHausdorff = bindings::boolOption(options, "computeHausdorff", o.computeHausdorff, st);
     o.optimize = bindings::boolOption(options, "optimize", o.optimize, st);
     o.returnPatches = bindings::boolOption(options, "patches", o.returnPatches, st);
+    if (!options.isUndefined() && !options.isNull() && !options["boundary"].isUndefined() && !options["boundary"].isNull()) {
+      val b = options["boundary"];
+      const std::string s = b.isString() ? b.as<std::string>() : std::string();
+      if (s == "free") o.boundary = BoundaryCondition::Free;
+      else if (s == "corners") o.boundary = BoundaryCondition::Corners;
+      else if (s == "circle") o.boundary = BoundaryCondition::Circle;
+      else fail(Code::InvalidArgument, st, "boundary must be 'free', 'corners' or 'circle'");
+    }
     o.optimizeIterations = int(bindings::numberOption(options, "optimizeIterations", o.optimizeIterations, st, 0, 1000));
     o.optimizeTolerance = bindings::numberOption(options, "optimizeTolerance", o.optimizeTolerance, st, 0);
     o.hausdorffSamples =

@@ -183,6 +183,7 @@ const remeshKeys: (keyof RemeshOptions)[] = [
   'optimizeIterations',
   'optimizeTolerance',
   'patches',
+  'boundary',
   'computeHausdorff',
   'hausdorffSamples',
   'maxTriangles',

@@ -291,6 +291,8 @@ export interface RemeshOptions {
   maxCertificateRounds?: number;
   /** Optimize each patch after refinement (ODT moves and flips judged in 3D; default true). */
   optimize?: boolean;
+  /** The boundary condition each patch's flattening tries first (the others follow when its layout fails). Default 'free'. */
+  boundary?: 'free' | 'corners' | 'circle';
   /** Return every patch in the plane (RemeshResult.patches, patchOfTriangle), e.g. to draw the flattened domain. Default false. */
   patches?: boolean;
   /** Optimization passes (hard cap, default 2; each pass costs about as much as the lift). */

@@ -162,7 +162,9 @@ void Pipeline::flattenPatches() {
       // on developable patches, so planar angles are 3D angles and corners keep theirs; its
       // layout can overlap itself on strongly curved patches. Then corner-preserving (corners
       // keep their 3D angle, the sides bend), then the round disk (always embedded).
-      const BoundaryCondition order[] = {BoundaryCondition::Free, BoundaryCondition::Corners, BoundaryCondition::Circle};
+      std::vector<BoundaryCondition> order = {opt_.boundary};
+      for (BoundaryCondition bc : {BoundaryCondition::Free, BoundaryCondition::Corners, BoundaryCondition::Circle})
+        if (bc != opt_.boundary) order.push_back(bc);
       bool flattened = false;
       std::string lastError;
       for (BoundaryCondition bc : order) {
@@ -175,9 +177,11 @@ void Pipeline::flattenPatches() {
         try {
           w->flat = flatten(w->pm.mesh, fo);
           flattened = true;
-          if (bc != BoundaryCondition::Free)
+          if (bc != order.front())
             rep_.warnings.push_back(std::string("patch flattened with the ") +
-                                    (bc == BoundaryCondition::Corners ? "corner-preserving" : "round (circle)") +
+                                    (bc == BoundaryCondition::Free      ? "free"
+                                     : bc == BoundaryCondition::Corners ? "corner-preserving"
+                                                                        : "round (circle)") +
                                     " boundary condition after: " + lastError);
           break;
         } catch (const Error& e) {
@@ -185,9 +189,9 @@ void Pipeline::flattenPatches() {
           lastError = e.what();
           // the free boundary failed (its layout overlaps itself): smaller parts are closer to
           // developable and keep the least distorting map; split while the patch is big enough
-          if (bc == BoundaryCondition::Free && faces.size() >= kMinSplitFaces && F::splitPatch(g_, seg_, p)) {
+          if (bc == order.front() && faces.size() >= kMinSplitFaces && F::splitPatch(g_, seg_, p)) {
             ++scaleSplits_;
-            rep_.warnings.push_back("patch split after the free boundary failed: " + lastError);
+            rep_.warnings.push_back("patch split after its first boundary condition failed: " + lastError);
             split = true;
             break;
           }

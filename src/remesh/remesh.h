@@ -12,6 +12,7 @@
 #include <string>
 #include <vector>
 
+#include "conformal/ricci_flow.h"
 #include "core/mesh_buffers.h"
 #include "core/status.h"
 
@@ -42,6 +43,11 @@ struct RemeshOptions {
   double cornerTurnDeg = 50.0;
   //! User feature edges (input vertex pairs).
   std::vector<std::array<uint32_t, 2>> featureEdges;
+  //! The boundary condition each patch's flattening tries first; when its layout fails (overlaps
+  //! itself, or loses precision) the others follow, in the order Free, Corners, Circle. Free
+  //! (default): u = 0 on the boundary, isometric on developable patches (planar angles are 3D
+  //! angles). Corners: corners keep their 3D angle, the sides bend. Circle: a round disk.
+  conformal::BoundaryCondition boundary = conformal::BoundaryCondition::Free;
   //! A patch whose conformal scale factor ratio max/min e^u exceeds this is split in two (the
   //! planar sizing would otherwise span a huge range and the flow's layout lose precision).
   double maxScaleRatio = 50.0;

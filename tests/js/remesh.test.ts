@@ -157,6 +157,14 @@ describe('remesh in workers', () => {
     expect((await remesher.remesh(small, fast)).patches).toBeUndefined();
   });
 
+  it('boundary: each condition can be tried first; anything else is InvalidArgument', async () => {
+    for (const boundary of ['free', 'corners', 'circle'] as const) {
+      const r = await remesher.remesh(small, { ...fast, boundary });
+      expect(r.report.topologyPreserved).toBe(true);
+    }
+    await expect(remesher.remesh(small, { ...fast, boundary: 'disk' as 'free' })).rejects.toMatchObject({ code: 'InvalidArgument' });
+  });
+
   it('cancel rejects with Cancelled at once', async () => {
     const ac = new AbortController();
     const t0 = performance.now();

@@ -5,6 +5,8 @@
 import { ConformeshError, createRemesher, type MeshInfo, type MeshLike, type ReadMeshResult, type Remesher } from 'conformesh';
 
 export type BoundaryCondition = 'corners' | 'free' | 'disk';
+/** The library's name of the page's boundary condition (the page says 'disk' for the round one). */
+const libraryBoundary = (b: BoundaryCondition) => (b === 'disk' ? 'circle' : b);
 
 /** The parameters panel. Lengths are relative to the input's bounding-box diagonal. */
 export interface Params {
@@ -145,7 +147,7 @@ export class Engine {
       targetEdgeLength: params.edgeLength * diagonal,
       featureAngle: params.featureAngle,
       chordTolerance: params.chordTolerance * diagonal,
-      boundary: params.boundary,
+      boundary: libraryBoundary(params.boundary),
       patches: true, // the flattened-domain view draws every patch in its plane
     };
   }
@@ -177,7 +179,7 @@ export class Engine {
   async flatten(mesh: Mesh3, params: Params, diagonal: number, signal: AbortSignal): Promise<FlattenOutput> {
     if (!this.canFlatten) throw new ConformeshError('InternalError', 'api', 'flatten is not available in this build');
     const fn = (this.remesher as unknown as Loose).flatten as (m: MeshLike, o: unknown, c: unknown) => Promise<unknown>;
-    const raw = (await fn.call(this.remesher, mesh, { boundary: params.boundary }, { signal })) as Loose;
+    const raw = (await fn.call(this.remesher, mesh, { boundary: libraryBoundary(params.boundary) }, { signal })) as Loose;
     // one patch (flatten works on a disk): uv and u per input vertex, over the input triangles
     const list = (pick(raw, 'patches') as unknown[] | undefined) ?? [{ triangles: mesh.triangles, ...raw }];
     const out: FlattenOutput = { patches: patchesOf(list) };

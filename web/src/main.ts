@@ -63,7 +63,7 @@ let loadSeq = 0;
 const lastLoad = { analysisMs: NaN, buildMs: NaN, firstFrameMs: NaN };
 const lastRemesh = { maxFrameGapMs: NaN, maxFrameGapEndMs: NaN, frames: 0, seconds: NaN, applyMs: NaN };
 
-const params: Params = { minAngle: 30, edgeLength: 0.02, featureAngle: 40, chordTolerance: 0.001, boundary: 'corners' };
+const params: Params = { minAngle: 30, edgeLength: 0.02, featureAngle: 40, chordTolerance: 0.001, boundary: 'free' };
 const toggles = { features: true, patches: true, inputWire: false, layout: true, refined: true, remeshWire: true };
 
 function setState(s: string): void {
@@ -649,7 +649,7 @@ gui.add(params, 'featureAngle', 5, 120, 1).name('feature angle (°)').onFinishCh
   }
 });
 gui.add(params, 'chordTolerance', 0.0001, 0.01, 0.0001).name('chord tolerance (× diag.)');
-gui.add(params, 'boundary', { 'corner-preserving': 'corners', 'free (u = 0)': 'free', 'round disk': 'disk' }).name('boundary condition');
+gui.add(params, 'boundary', { 'free (u = 0)': 'free', 'corner-preserving': 'corners', 'round disk': 'disk' }).name('boundary condition');
 
 $('#remesh-button').addEventListener('click', () => void remesh());
 $('#cancel-button').addEventListener('click', () => running?.abort());

@@ -161,3 +161,16 @@ TEST_CASE("remesh: returnPatches gives each patch's planar mesh, consistent with
   }
   CHECK(inputFaces == in.triangleCount());  // the patches partition the input
 }
+
+TEST_CASE("remesh: every boundary condition tried first gives a valid remesh of the cube") {
+  for (auto bc : {conformal::BoundaryCondition::Free, conformal::BoundaryCondition::Corners, conformal::BoundaryCondition::Circle}) {
+    RemeshOptions o;
+    o.targetEdgeLengthRel = 0.05;
+    o.hausdorffSamples = 2000;
+    o.boundary = bc;
+    INFO("boundary " << int(bc));
+    RemeshResult r = checkRemesh(testshapes::cube(4), o, "cube", true, bc == conformal::BoundaryCondition::Free);
+    // flat square faces: the corner-preserving and the free conditions agree, the disk distorts
+    if (bc != conformal::BoundaryCondition::Circle) CHECK(r.report.trianglesBelowBoundOutsideExempt == 0);
+  }
+}
