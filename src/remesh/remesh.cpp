@@ -66,6 +66,13 @@ struct PatchWork {
 
 };
 
+// A piece of the patch's boundary polyline: boundary halfedge k of the loop, from parameter t0
+// to t1 along it.
+struct Piece {
+  uint32_t k;
+  double t0, t1;
+};
+
 struct BoundaryPoint {
   uint32_t sample;
   uint32_t loopPos;  // boundary halfedge index in the loop
@@ -89,6 +96,7 @@ class Pipeline {
   void meshPatch(uint32_t p, bool splitSegments = true);
   void optimizeMesh(uint32_t p);
   bool liftPoint(const PatchWork& w, double x, double y, PullbackPoint& q) const;
+  std::vector<Piece> stretch(const PatchWork& w, const BoundaryPoint& p0, const BoundaryPoint& p1, size_t points) const;
   uint32_t addSplitSample(const PatchWork& w, const std::vector<BoundaryPoint>& bp, uint32_t s, double t);
   double curveKey(uint32_t c, uint32_t sample) const;
   MeshBuffers stitch(std::vector<uint32_t>& trianglePatch) const;
@@ -295,24 +303,15 @@ double Pipeline::curveKey(uint32_t c, uint32_t s) const {
   return double(i) + t;
 }
 
-// A refinement vertex inserted on boundary segment s (from boundary point s to s+1) at
-// parameter t: find it on the patch boundary polyline in the plane, make it a curve sample on the
-// input edge there, and ask the patches on the curve to include it.
-uint32_t Pipeline::addSplitSample(const PatchWork& w, const std::vector<BoundaryPoint>& bp, uint32_t s, double t) {
+// The pieces of the boundary polyline from boundary point p0 to the next one, p1 (`points`
+// boundary points in all).
+std::vector<Piece> Pipeline::stretch(const PatchWork& w, const BoundaryPoint& p0, const BoundaryPoint& p1, size_t points) const {
   const auto& loop = w.pm.boundaryLoops[0];
-  const auto& uv = w.flat.uv;
-  const BoundaryPoint& p0 = bp[s];
-  const BoundaryPoint& p1 = bp[(s + 1) % bp.size()];
-  // pieces of the boundary polyline between p0 and p1: (halfedge, param from, param to)
-  struct Piece {
-    uint32_t k;
-    double t0, t1;
-  };
   std::vector<Piece> pieces;
   uint32_t k = p0.loopPos;
   double from = p0.param;
   for (size_t guard = 0; guard <= loop.size() + 1; ++guard) {
-    if (k == p1.loopPos && (p1.param >= from || pieces.size() > 0 || bp.size() > 1)) {
+    if (k == p1.loopPos && (p1.param >= from || pieces.size() > 0 || points > 1)) {
       if (!(k == p0.loopPos && pieces.empty() && p1.param < from)) {
         pieces.push_back({k, from, p1.param});
         break;
@@ -322,6 +321,18 @@ uint32_t Pipeline::addSplitSample(const PatchWork& w, const std::vector<Boundary
     k = (k + 1) % uint32_t(loop.size());
     from = 0.0;
   }
+  return pieces;
+}
+
+// A refinement vertex inserted on boundary segment s (from boundary point s to s+1) at
+// parameter t: find it on the patch boundary polyline in the plane, make it a curve sample on the
+// input edge there, and ask the patches on the curve to include it.
+uint32_t Pipeline::addSplitSample(const PatchWork& w, const std::vector<BoundaryPoint>& bp, uint32_t s, double t) {
+  const auto& loop = w.pm.boundaryLoops[0];
+  const auto& uv = w.flat.uv;
+  const BoundaryPoint& p0 = bp[s];
+  const BoundaryPoint& p1 = bp[(s + 1) % bp.size()];
+  const std::vector<Piece> pieces = stretch(w, p0, p1, bp.size());
   auto halfedgeUv = [&](uint32_t kk, double tt, double& x, double& y) {
     const auto& h = loop[kk];
     uint32_t a = w.pm.mesh.triangles[3 * h.face + h.corner], b = w.pm.mesh.triangles[3 * h.face + (h.corner + 1) % 3];
@@ -430,21 +441,13 @@ void Pipeline::meshPatch(uint32_t p, bool splitSegments) {
     size_t longest = 0;
     double best = -1;
     for (size_t i = 0; i < bp.size(); ++i) {
-      const auto& a = bp[i];
-      const auto& b = bp[(i + 1) % bp.size()];
-      // arc length along the flattened boundary from a to b
+      // its length along the flattened boundary
       double len = 0;
       const auto& loop = w.pm.boundaryLoops[0];
-      for (uint32_t k = a.loopPos, n = 0; n <= loop.size(); k = (k + 1) % uint32_t(loop.size()), ++n) {
-        const auto& h = loop[k];
+      for (const Piece& pc : stretch(w, bp[i], bp[(i + 1) % bp.size()], bp.size())) {
+        const auto& h = loop[pc.k];
         uint32_t va = w.pm.mesh.triangles[3 * h.face + h.corner], vb = w.pm.mesh.triangles[3 * h.face + (h.corner + 1) % 3];
-        double el = std::hypot(w.flat.uv[2 * vb] - w.flat.uv[2 * va], w.flat.uv[2 * vb + 1] - w.flat.uv[2 * va + 1]);
-        double from = k == a.loopPos && n == 0 ? a.param : 0.0;
-        if (k == b.loopPos && (n > 0 || b.param > a.param || bp.size() == 1)) {
-          len += (b.param - from) * el;
-          break;
-        }
-        len += (1.0 - from) * el;
+        len += (pc.t1 - pc.t0) * std::hypot(w.flat.uv[2 * vb] - w.flat.uv[2 * va], w.flat.uv[2 * vb + 1] - w.flat.uv[2 * va + 1]);
       }
       if (len > best) best = len, longest = i;
     }
