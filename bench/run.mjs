@@ -104,7 +104,11 @@ function repeatRun(cmd, args, repeat, options) {
   return {
     ok, runs, error: ok ? undefined : runs[runs.length - 1].error, cmd: runs[0].cmd,
     json: runs[runs.length - 1].json,
-    med: (key) => pick((r) => (r.json ? Number(r.json[key]) : NaN)),
+    // a key whose value is an object of stage times (`conformesh remesh --json` seconds) reads its total
+    med: (key) => pick((r) => {
+      const v = r.json ? r.json[key] : NaN;
+      return v !== null && typeof v === 'object' ? Number(v.total) : Number(v);
+    }),
     wall: pick((r) => r.stats?.wallSeconds), cpu: pick((r) => r.stats ? r.stats.userSeconds + r.stats.systemSeconds : NaN),
     peakRss: pick((r) => r.stats?.peakRssBytes),
   };
