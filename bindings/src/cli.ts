@@ -104,6 +104,13 @@ async function readFileBytes(path: string): Promise<Uint8Array> {
 }
 
 /** Args.number of the native CLI. */
+/** --boundary circle|free|corners (InvalidArgument otherwise), as the native CLI. */
+function boundaryFlag(args: Args, fallback: 'circle' | 'free' | 'corners'): 'circle' | 'free' | 'corners' {
+  const b = args.flags.get('--boundary') ?? fallback;
+  if (b !== 'circle' && b !== 'free' && b !== 'corners') throw new ConformeshError('InvalidArgument', 'api', '--boundary must be circle, free or corners');
+  return b;
+}
+
 function numberFlag(args: Args, name: string, fallback: number): number {
   const v = args.flags.get(name);
   if (v === undefined) return fallback;
@@ -160,7 +167,7 @@ const refine2dUsage =
 const flattenUsage =
   'flatten IN -o OUT.obj [--boundary circle|free|corners] [--corner-angle DEG] [--no-flips] [--json]';
 const remeshUsage =
-  'remesh IN -o OUT [--min-angle D] [--edge-length L | --edge-length-rel R] [--feature-angle D] [--chord-tol T] [--max-triangles N] [--max-vertices N] [--json] [--no-hausdorff] [--no-optimize]';
+  'remesh IN -o OUT [--min-angle D] [--edge-length L | --edge-length-rel R] [--feature-angle D] [--chord-tol T] [--boundary free|corners|circle] [--max-triangles N] [--max-vertices N] [--json] [--no-hausdorff] [--no-optimize]';
 
 const infoUsage = 'info FILE [--json] [--weld TOL] [--format NAME]';
 
@@ -228,9 +235,7 @@ const commands: Record<string, Command> = {
           'usage: conformesh flatten IN -o OUT.obj [--boundary circle|free|corners] [--corner-angle DEG] [--json]',
         );
       const path = args.positional[0]!;
-      const boundary = args.flags.get('--boundary') ?? 'circle';
-      if (boundary !== 'circle' && boundary !== 'free' && boundary !== 'corners')
-        throw new ConformeshError('InvalidArgument', 'api', '--boundary must be circle, free or corners');
+      const boundary = boundaryFlag(args, 'circle');
       const tolerance = numberFlag(args, '--tolerance', 1e-9);
       const maxIterations = Math.trunc(numberFlag(args, '--max-iterations', 100));
       const mesh = api.readMesh(await readFileBytes(path), { fileName: path });
@@ -271,7 +276,7 @@ const commands: Record<string, Command> = {
   remesh: {
     usage: remeshUsage,
     summary: 'remesh a surface: conformal flattening per patch, planar Delaunay refinement, lift',
-    valueFlags: ['-o', '--min-angle', '--edge-length', '--edge-length-rel', '--feature-angle', '--chord-tol', '--max-triangles', '--max-vertices'],
+    valueFlags: ['-o', '--min-angle', '--edge-length', '--edge-length-rel', '--feature-angle', '--chord-tol', '--max-triangles', '--max-vertices', '--boundary'],
     switches: ['--json', '--no-hausdorff', '--no-optimize'],
     async run(args, api) {
       if (args.positional.length !== 1) throw new ConformeshError('InvalidArgument', 'api', 'remesh needs exactly one input file');
@@ -285,6 +290,7 @@ const commands: Record<string, Command> = {
         chordTolerance: numberFlag(args, '--chord-tol', -1),
         computeHausdorff: !args.flags.has('--no-hausdorff'),
         optimize: !args.flags.has('--no-optimize'),
+        boundary: boundaryFlag(args, 'free'),
         // as the native CLI: values below 1 are passed as 0 (InvalidArgument, never "unlimited")
         maxTriangles: Math.max(0, Math.min(numberFlag(args, '--max-triangles', 32 * 2 ** 20), 1e18)),
         maxVertices: Math.max(0, Math.min(numberFlag(args, '--max-vertices', 16 * 2 ** 20), 1e18)),

@@ -123,4 +123,12 @@ int reportError(const Status& s, bool json) {
   return 1;
 }
 
+conformal::BoundaryCondition boundaryFlag(const Args& args, const char* fallback) {
+  const std::string b = args.get("--boundary", fallback);
+  if (b == "circle") return conformal::BoundaryCondition::Circle;
+  if (b == "free") return conformal::BoundaryCondition::Free;
+  if (b == "corners") return conformal::BoundaryCondition::Corners;
+  fail(Code::InvalidArgument, Stage::Api, "--boundary must be circle, free or corners");
+}
+
 }  // namespace conformesh::cli

@@ -5,6 +5,7 @@
 #include <string>
 #include <vector>
 
+#include "conformal/ricci_flow.h"
 #include "core/status.h"
 
 namespace conformesh::cli {
@@ -36,5 +37,8 @@ std::string jsonNumber(double v);
 //! Report an error: as {"error":{"code":...,"name":...,"stage":...,"message":...}} on stdout when
 //! json is true, else as a line on stderr. Returns the process exit code (1).
 int reportError(const Status& s, bool json);
+
+//! --boundary circle|free|corners (InvalidArgument otherwise); `fallback` when absent.
+conformal::BoundaryCondition boundaryFlag(const Args& args, const char* fallback);
 
 }  // namespace conformesh::cli

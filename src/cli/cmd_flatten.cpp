@@ -29,15 +29,7 @@ int runFlatten(const std::vector<std::string>& argv) {
            "usage: conformesh flatten IN -o OUT.obj [--boundary circle|free|corners] [--corner-angle DEG] [--json]");
     const std::string in = args.positional[0], out = args.get("-o");
     FlattenOptions o;
-    const std::string b = args.get("--boundary", "circle");
-    if (b == "circle")
-      o.boundary = BoundaryCondition::Circle;
-    else if (b == "free")
-      o.boundary = BoundaryCondition::Free;
-    else if (b == "corners")
-      o.boundary = BoundaryCondition::Corners;
-    else
-      fail(Code::InvalidArgument, Stage::Api, "--boundary must be circle, free or corners");
+    o.boundary = boundaryFlag(args, "circle");
     o.tolerance = args.number("--tolerance", o.tolerance);
     o.maxIterations = int(args.number("--max-iterations", o.maxIterations));
     o.flips = !args.has("--no-flips");

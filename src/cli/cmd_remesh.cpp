@@ -92,7 +92,7 @@ int run(const std::vector<std::string>& argv) {
   try {
     Args args = parseArgs(argv,
                           {"-o", "--min-angle", "--edge-length", "--edge-length-rel", "--feature-angle", "--chord-tol",
-                           "--max-triangles", "--max-vertices"},
+                           "--max-triangles", "--max-vertices", "--boundary"},
                           {"--json", "--no-hausdorff", "--no-optimize"});
     if (args.positional.size() != 1) fail(Code::InvalidArgument, Stage::Api, "remesh needs exactly one input file");
     if (args.has("--edge-length") && args.has("--edge-length-rel"))
@@ -105,6 +105,7 @@ int run(const std::vector<std::string>& argv) {
     opt.chordTolerance = args.number("--chord-tol", opt.chordTolerance);
     opt.computeHausdorff = !args.has("--no-hausdorff");
     opt.optimize = !args.has("--no-optimize");
+    opt.boundary = boundaryFlag(args, "free");
     // limits: 0 and negative values are rejected by remesh (InvalidArgument), never "unlimited"
     auto limit = [&](const char* flag, size_t fallback) {
       double v = args.number(flag, double(fallback));
@@ -135,7 +136,8 @@ int run(const std::vector<std::string>& argv) {
 
 const CommandRegistrar registrar({"remesh",
                                   "remesh IN -o OUT [--min-angle D] [--edge-length L | --edge-length-rel R] "
-                                  "[--feature-angle D] [--chord-tol T] [--max-triangles N] [--max-vertices N] [--json] [--no-hausdorff] [--no-optimize]",
+                                  "[--feature-angle D] [--chord-tol T] [--boundary free|corners|circle] [--max-triangles N] [--max-vertices N] [--json] "
+                                  "[--no-hausdorff] [--no-optimize]",
                                   "remesh a surface: conformal flattening per patch, planar Delaunay refinement, lift",
                                   run});
 

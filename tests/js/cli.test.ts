@@ -163,7 +163,13 @@ describe('package CLI: refine2d, flatten, remesh', () => {
         expect(r.patches).toBe(n.patches);
         expect(Math.abs(r.triangles - n.triangles) / n.triangles).toBeLessThan(0.25);
       }
-    const bad = ['remesh', input, '--edge-length', '1', '--edge-length-rel', '0.1', '--json'];
-    expect(run(bad).stdout).toBe(spawnSync(native, bad, { encoding: 'utf8' }).stdout);
+    for (const bad of [
+      ['remesh', input, '--edge-length', '1', '--edge-length-rel', '0.1', '--json'],
+      ['remesh', input, '--boundary', 'disk', '--json'],
+    ]) {
+      const out = run(bad).stdout;
+      expect(out).toBe(spawnSync(native, bad, { encoding: 'utf8' }).stdout);
+      expect(JSON.parse(out).error.name).toBe('InvalidArgument');
+    }
   });
 });
