@@ -222,10 +222,6 @@ void rebuildCurves(const EdgeGraph& g, Segmentation& seg) {
       seg.vertexCorner[v] = 1;
       continue;
     }
-    if (!seg.forcedCorner.empty() && seg.forcedCorner[v]) {
-      seg.vertexCorner[v] = 2;
-      continue;
-    }
     uint32_t e1 = twoEdges[v][0], e2 = twoEdges[v][1];
     if (seg.edgeKind[e1] != seg.edgeKind[e2]) {
       seg.vertexCorner[v] = 1;

@@ -51,9 +51,6 @@ struct Segmentation {
   uint32_t sharpEdgeCount = 0;  //!< feature edges from the dihedral angle or the user
   uint32_t cutEdgeCount = 0;
   double cornerTurnDeg = 50.0;  //!< the option used, kept for rebuildCurves after splits
-  //! Per vertex: 1 forces an (artificial) corner there, e.g. so a patch bounded by one smooth
-  //! loop gets the corners a polygonal planar domain needs. Empty or one per vertex.
-  std::vector<uint8_t> forcedCorner;
 
   bool isCurveEdge(uint32_t e) const { return edgeKind[e] != EdgeKind::None; }
   std::vector<uint8_t> curveMask() const;
