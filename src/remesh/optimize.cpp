@@ -5,6 +5,8 @@
 #include <cmath>
 #include <unordered_map>
 
+#include "planar/predicates.h"
+
 namespace conformesh::optimization {
 namespace {
 
@@ -12,9 +14,7 @@ using features::Vec3;
 constexpr double kRadToDeg = 57.295779513082320876798;
 constexpr uint32_t kNoTri = 0xffffffffu;
 
-double orient(const double* a, const double* b, const double* c) {
-  return (b[0] - a[0]) * (c[1] - a[1]) - (b[1] - a[1]) * (c[0] - a[0]);
-}
+using planar::orient2d;
 
 // Circumcenter of a planar triangle; false when it is degenerate.
 bool circumcenter(const double* a, const double* b, const double* c, double out[2]) {
@@ -85,7 +85,7 @@ bool tryMove(Mesh& m, uint32_t v, double x, double y, const LiftFn& lift, double
     const double l2 = std::max({std::pow(c[1][0] - c[0][0], 2) + std::pow(c[1][1] - c[0][1], 2),
                                 std::pow(c[2][0] - c[1][0], 2) + std::pow(c[2][1] - c[1][1], 2),
                                 std::pow(c[0][0] - c[2][0], 2) + std::pow(c[0][1] - c[2][1], 2)});
-    if (!(orient(c[0], c[1], c[2]) > 1e-6 * l2)) return false;
+    if (!(orient2d(c[0], c[1], c[2]) > 1e-6 * l2)) return false;
   }
   Vec3 P;
   if (!lift(x, y, P)) return false;
@@ -120,7 +120,7 @@ bool odtTarget(const Mesh& m, uint32_t v, double out[2]) {
     const double *a = m.p(t[0]), *b = m.p(t[1]), *c = m.p(t[2]);
     double cc[2];
     if (!circumcenter(a, b, c, cc)) return false;
-    const double w = 0.5 * orient(a, b, c);
+    const double w = 0.5 * orient2d(a, b, c);
     sx += w * cc[0];
     sy += w * cc[1];
     sw += w;
@@ -184,7 +184,7 @@ size_t flipPass(Mesh& m, std::vector<uint8_t>& touched) {
       else if (m.tri[3 * t0 + c] == b && m.tri[3 * t0 + (c + 1) % 3] == a) x = b, y = a;
     // new triangles (c0, x, c1) and (c1, y, c0): both must be strictly positive in the plane
     const double l2 = std::pow(m.p(c0)[0] - m.p(c1)[0], 2) + std::pow(m.p(c0)[1] - m.p(c1)[1], 2);
-    if (!(orient(m.p(c0), m.p(x), m.p(c1)) > 1e-6 * l2) || !(orient(m.p(c1), m.p(y), m.p(c0)) > 1e-6 * l2)) continue;
+    if (!(orient2d(m.p(c0), m.p(x), m.p(c1)) > 1e-6 * l2) || !(orient2d(m.p(c1), m.p(y), m.p(c0)) > 1e-6 * l2)) continue;
     const double before = std::min(m.minAngle[t0], m.minAngle[t1]);
     const double n0 = minAngleDeg3(m.pos[c0], m.pos[x], m.pos[c1]), n1 = minAngleDeg3(m.pos[c1], m.pos[y], m.pos[c0]);
     if (!(std::min(n0, n1) > before + 1e-6)) continue;
