@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <map>
 #include <queue>
 #include <string>
 
@@ -204,6 +205,242 @@ std::vector<uint8_t> Segmentation::curveMask() const {
   return m;
 }
 
+namespace {
+
+// The point at arc length `len` along a vertex path (its last vertex when the path is shorter).
+Vec3 pointAlong(const EdgeGraph& g, const std::vector<uint32_t>& path, double len) {
+  double acc = 0;
+  for (size_t i = 1; i < path.size(); ++i) {
+    const Vec3 a = g.positions[path[i - 1]], b = g.positions[path[i]];
+    const double l = norm(b - a);
+    if (l > 0 && acc + l >= len) return a + (b - a) * ((len - acc) / l);
+    acc += l;
+  }
+  return g.positions[path.back()];
+}
+
+}  // namespace
+
+uint32_t improveCutJunctions(const EdgeGraph& g, Segmentation& seg, double scale) {
+  if (!(scale > 0)) return 0;
+  const double kAim = 60.0 * kPi / 180.0;   // ends meeting another curve below this are rerouted
+  const double kGain = 5.0 * kPi / 180.0;   // a reroute must improve the angle by this much
+  const std::vector<EdgeKind> original = seg.edgeKind;
+  std::vector<uint32_t> valence(g.vertexCount, 0);
+  std::vector<double> dist(g.vertexCount, INFINITY);
+  std::vector<uint32_t> predEdge(g.vertexCount, kNone), seen;
+  std::vector<uint8_t> changed(g.vertexCount, 0), forbidden(g.vertexCount, 0);
+  uint32_t total = 0;
+  for (int pass = 0; pass < 3; ++pass) {
+    std::fill(valence.begin(), valence.end(), 0);
+    for (uint32_t e = 0; e < g.edgeCount(); ++e)
+      if (seg.isCurveEdge(e)) ++valence[g.edgeVerts[e][0]], ++valence[g.edgeVerts[e][1]];
+    std::fill(changed.begin(), changed.end(), 0);
+    std::vector<uint8_t> usedPatch(seg.patches.size(), 0);
+    // how many curves lie between each pair of patches: a cut is rerouted only when it is the one
+    // curve between its two patches (else the merged region would not be a disk)
+    std::map<std::pair<uint32_t, uint32_t>, uint32_t> between;
+    for (const Curve& c : seg.curves) ++between[{std::min(c.patches[0], c.patches[1]), std::max(c.patches[0], c.patches[1])}];
+    // the curve ends at every corner: (curve, 0 = starts there / 1 = ends there)
+    std::vector<std::vector<std::pair<uint32_t, int>>> ends(g.vertexCount);
+    for (uint32_t ci = 0; ci < seg.curves.size(); ++ci) {
+      ends[seg.curves[ci].vertices.front()].push_back({ci, 0});
+      ends[seg.curves[ci].vertices.back()].push_back({ci, 1});
+    }
+    auto fromEnd = [&](uint32_t ci, int end) {
+      std::vector<uint32_t> path = seg.curves[ci].vertices;
+      if (end) std::reverse(path.begin(), path.end());
+      return path;
+    };
+    uint32_t moved = 0;
+    for (uint32_t ci = 0; ci < seg.curves.size(); ++ci) {
+      const Curve& c = seg.curves[ci];
+      if (c.kind != EdgeKind::Cut || c.patches[0] == kNone || c.patches[1] == kNone || c.patches[0] == c.patches[1])
+        continue;
+      const uint32_t A = c.patches[0], B = c.patches[1];
+      if (between[{std::min(A, B), std::max(A, B)}] != 1) continue;
+      for (int end = 0; end < 2; ++end) {
+        // one reroute per patch and pass (patch ids are rebuilt between passes)
+        if (usedPatch[A] || usedPatch[B]) break;
+        const std::vector<uint32_t> path = fromEnd(ci, end);
+        const uint32_t v = path[0];
+        // a junction of three or more curve edges (an end joining a dangling feature stays)
+        if (path.size() < 3 || valence[v] < 3) continue;
+        bool stale = false;
+        for (uint32_t x : path) stale = stale || changed[x];
+        if (stale) continue;
+        const double l = std::min(scale, 0.3 * c.length);
+        const Vec3 d0 = pointAlong(g, path, l) - g.positions[v];
+        double old = kPi;
+        for (auto [cj, ej] : ends[v]) {
+          if (cj == ci && ej == end) continue;
+          std::vector<uint32_t> other = fromEnd(cj, ej);
+          old = std::min(old, angleBetween(d0, pointAlong(g, other, l) - g.positions[v]));
+        }
+        if (old >= kAim) continue;
+        // u: the cut's vertex about 3·l from the end (never its far end)
+        size_t k = 1;
+        for (double acc = 0; k + 1 < path.size(); ++k) {
+          acc += norm(g.positions[path[k]] - g.positions[path[k - 1]]);
+          if (acc >= 3 * l) break;
+        }
+        if (k + 1 >= path.size()) continue;
+        const uint32_t u = path[k];
+        std::vector<uint32_t> oldEdges;
+        for (size_t i = 0; i < k; ++i) {
+          uint32_t e = g.findEdge(path[i], path[i + 1]);
+          oldEdges.push_back(e);
+          seg.edgeKind[e] = EdgeKind::None;
+          --valence[path[i]], --valence[path[i + 1]];
+        }
+        for (size_t i = k + 1; i < path.size(); ++i) forbidden[path[i]] = 1;
+        // Dijkstra from u through vertices on no curve, to the nearest smooth point of a curve
+        using Item = std::pair<double, uint32_t>;
+        std::priority_queue<Item, std::vector<Item>, std::greater<Item>> pq;
+        dist[u] = 0;
+        seen.push_back(u);
+        pq.push({0.0, u});
+        uint32_t hit = kNone;
+        const double radius = 12 * l;
+        while (!pq.empty()) {
+          auto [d, x] = pq.top();
+          pq.pop();
+          if (d > dist[x]) continue;
+          if (x != u && valence[x] > 0) {
+            hit = x;
+            break;
+          }
+          for (uint32_t kk = g.vertexEdgeStart[x]; kk < g.vertexEdgeStart[x + 1]; ++kk) {
+            const uint32_t e = g.vertexEdgeIds[kk];
+            if (seg.isCurveEdge(e)) continue;
+            const uint32_t y = g.otherVertex(e, x);
+            if (y == u || forbidden[y] || changed[y]) continue;
+            // a curve vertex is a landing point only when it is a smooth point of a curve (or
+            // the old end itself)
+            if (valence[y] > 0 && y != v && (valence[y] != 2 || seg.vertexCorner[y])) continue;
+            const double nd = d + g.edgeLength(e);
+            if (nd < dist[y] && nd <= radius) {
+              if (std::isinf(dist[y])) seen.push_back(y);
+              dist[y] = nd;
+              predEdge[y] = e;
+              pq.push({nd, y});
+            }
+          }
+        }
+        bool commit = false;
+        std::vector<uint32_t> newPath;  // from the landing point to u
+        if (hit != kNone && hit != v) {
+          for (uint32_t x = hit; x != u; x = g.otherVertex(predEdge[x], x)) newPath.push_back(x);
+          newPath.push_back(u);
+          std::vector<uint32_t> cutPath = newPath;
+          cutPath.insert(cutPath.end(), path.begin() + long(k) + 1, path.end());
+          const Vec3 dn = pointAlong(g, cutPath, l) - g.positions[hit];
+          // the landing curve's two directions from the hit point
+          uint32_t cj = kNone;
+          for (uint32_t kk = g.vertexEdgeStart[hit]; kk < g.vertexEdgeStart[hit + 1] && cj == kNone; ++kk)
+            if (seg.isCurveEdge(g.vertexEdgeIds[kk])) cj = seg.edgeCurve[g.vertexEdgeIds[kk]];
+          // the landing curve must have exactly one side in the merged region A ∪ B, else the
+          // new cut would leave a patch touching itself at the landing point
+          const auto inAB = [&](uint32_t q) { return q == A || q == B; };
+          if (cj != kNone && inAB(seg.curves[cj].patches[0]) != inAB(seg.curves[cj].patches[1])) {
+            const auto& cv = seg.curves[cj].vertices;
+            const auto it = std::find(cv.begin(), cv.end(), hit);
+            if (it != cv.end()) {
+              std::vector<uint32_t> fwd(it, cv.end()), back(cv.begin(), it + 1);
+              std::reverse(back.begin(), back.end());
+              double now = kPi;
+              for (const auto* side : {&fwd, &back})
+                if (side->size() > 1) now = std::min(now, angleBetween(dn, pointAlong(g, *side, l) - g.positions[hit]));
+              commit = now > old + kGain;
+            }
+          }
+        }
+        for (uint32_t x : seen) dist[x] = INFINITY, predEdge[x] = kNone;
+        seen.clear();
+        for (size_t i = k + 1; i < path.size(); ++i) forbidden[path[i]] = 0;
+        if (commit) {
+          for (size_t i = 0; i + 1 < newPath.size(); ++i) {
+            uint32_t e = g.findEdge(newPath[i], newPath[i + 1]);
+            seg.edgeKind[e] = EdgeKind::Cut;
+            ++valence[newPath[i]], ++valence[newPath[i + 1]];
+          }
+          for (uint32_t x : path) changed[x] = 1;
+          for (uint32_t x : newPath) changed[x] = 1;
+          usedPatch[A] = usedPatch[B] = 1;
+          ++moved;
+        } else {
+          for (size_t i = 0; i < k; ++i) {
+            seg.edgeKind[oldEdges[i]] = EdgeKind::Cut;
+            ++valence[path[i]], ++valence[path[i + 1]];
+          }
+        }
+      }
+    }
+    if (moved == 0) break;
+    total += moved;
+    rebuildCurves(g, seg);
+  }
+  if (total == 0) return 0;
+  // the safety net: every patch is still a disk, else the cuts are put back as they were
+  const std::vector<uint8_t> mask = seg.curveMask();
+  for (const auto& faces : seg.patches)
+    if (!extractPatch(g, mask, faces, false).isDisk()) {
+      seg.edgeKind = original;
+      rebuildCurves(g, seg);
+      return 0;
+    }
+  seg.cutEdgeCount = 0;
+  for (EdgeKind kd : seg.edgeKind) seg.cutEdgeCount += kd == EdgeKind::Cut;
+  seg.reroutedCutEnds += total;
+  return total;
+}
+
+std::vector<double> featureWedgeAngles(const EdgeGraph& g, const Segmentation& seg) {
+  // faces around each vertex joined across the edges at the vertex that are not features or
+  // boundaries (union-find on the few faces of the star)
+  std::vector<double> out(g.vertexCount, 2 * kPi);
+  std::vector<uint32_t> star, parent;
+  std::vector<double> sum;
+  for (uint32_t v = 0; v < g.vertexCount; ++v) {
+    bool touched = false;
+    star.clear();
+    for (uint32_t k = g.vertexEdgeStart[v]; k < g.vertexEdgeStart[v + 1]; ++k) {
+      const uint32_t e = g.vertexEdgeIds[k];
+      const EdgeKind kind = seg.edgeKind[e];
+      if (kind == EdgeKind::Feature || kind == EdgeKind::Boundary) touched = true;
+      for (uint32_t f : g.edgeFaces[e])
+        if (f != kNone) star.push_back(f);
+    }
+    if (!touched) continue;
+    std::sort(star.begin(), star.end());
+    star.erase(std::unique(star.begin(), star.end()), star.end());
+    parent.resize(star.size());
+    for (uint32_t i = 0; i < parent.size(); ++i) parent[i] = i;
+    auto find = [&](uint32_t i) {
+      while (parent[i] != i) i = parent[i] = parent[parent[i]];
+      return i;
+    };
+    auto slot = [&](uint32_t f) { return uint32_t(std::lower_bound(star.begin(), star.end(), f) - star.begin()); };
+    for (uint32_t k = g.vertexEdgeStart[v]; k < g.vertexEdgeStart[v + 1]; ++k) {
+      const uint32_t e = g.vertexEdgeIds[k];
+      const EdgeKind kind = seg.edgeKind[e];
+      if (kind == EdgeKind::Feature || kind == EdgeKind::Boundary || g.edgeFaces[e][1] == kNone) continue;
+      parent[find(slot(g.edgeFaces[e][0]))] = find(slot(g.edgeFaces[e][1]));
+    }
+    sum.assign(star.size(), 0.0);
+    for (uint32_t i = 0; i < star.size(); ++i) {
+      const auto& fv = g.faces[star[i]];
+      for (int c = 0; c < 3; ++c)
+        if (fv[c] == v) sum[find(i)] += g.cornerAngle(star[i], c);
+    }
+    double m = 2 * kPi;
+    for (uint32_t i = 0; i < star.size(); ++i)
+      if (find(i) == i) m = std::min(m, sum[i]);
+    out[v] = m;
+  }
+  return out;
+}
+
 void rebuildCurves(const EdgeGraph& g, Segmentation& seg) {
   const double turnLimit = seg.cornerTurnDeg * kPi / 180.0;
   std::vector<uint32_t> valence(g.vertexCount, 0);
@@ -227,6 +464,9 @@ void rebuildCurves(const EdgeGraph& g, Segmentation& seg) {
       seg.vertexCorner[v] = 1;
       continue;
     }
+    // a cut is ours and smooth: it has no corners of its own (the staircase of input edges it
+    // follows would otherwise put a corner, and so a forced output vertex, at every other step)
+    if (seg.edgeKind[e1] == EdgeKind::Cut) continue;
     Vec3 a = g.positions[v] - g.positions[g.otherVertex(e1, v)];
     Vec3 b = g.positions[g.otherVertex(e2, v)] - g.positions[v];
     if (angleBetween(a, b) > turnLimit) seg.vertexCorner[v] = 1;
@@ -317,6 +557,7 @@ Segmentation segment(const EdgeGraph& g, const FeatureOptions& options, const Pr
     fail(Code::InvalidArgument, Stage::Segment, "cornerTurn must be in [0, 180] degrees");
   Segmentation seg;
   seg.cornerTurnDeg = options.cornerTurnDeg;
+  seg.junctionScale = options.junctionScale;
   seg.edgeKind.assign(g.edgeCount(), EdgeKind::None);
   const double cosLimit = std::cos(options.featureAngleDeg * kPi / 180.0);
   for (uint32_t e = 0; e < g.edgeCount(); ++e) {
@@ -356,6 +597,7 @@ Segmentation segment(const EdgeGraph& g, const FeatureOptions& options, const Pr
       fail(Code::Cancelled, Stage::Segment, "cancelled");
   }
   rebuildCurves(g, seg);
+  improveCutJunctions(g, seg, seg.junctionScale);
   if (progress && !progress(Stage::Segment, 1.0)) fail(Code::Cancelled, Stage::Segment, "cancelled");
   return seg;
 }
@@ -372,6 +614,7 @@ bool splitPatch(const EdgeGraph& g, Segmentation& seg, uint32_t p, uint32_t part
     cutter.toDisks(r, count);
   }
   rebuildCurves(g, seg);
+  improveCutJunctions(g, seg, seg.junctionScale);
   return true;
 }
 

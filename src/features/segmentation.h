@@ -27,6 +27,9 @@ struct FeatureOptions {
   std::vector<std::array<uint32_t, 2>> featureEdges;
   //! Hard cap on the number of patches cutting may create (IterationLimit when hit).
   uint32_t maxPatches = 4096;
+  //! Length scale (absolute) at which the angles where a cut meets another curve are judged and
+  //! improved (see improveCutJunctions); about the output edge length. 0 leaves cuts as found.
+  double junctionScale = 0.0;
 };
 
 enum class EdgeKind : uint8_t { None = 0, Feature = 1, Boundary = 2, Cut = 3 };
@@ -51,6 +54,8 @@ struct Segmentation {
   uint32_t sharpEdgeCount = 0;  //!< feature edges from the dihedral angle or the user
   uint32_t cutEdgeCount = 0;
   double cornerTurnDeg = 50.0;  //!< the option used, kept for rebuildCurves after splits
+  double junctionScale = 0.0;  //!< the option used, kept for splitPatch
+  uint32_t reroutedCutEnds = 0;  //!< cut ends moved by improveCutJunctions
 
   bool isCurveEdge(uint32_t e) const { return edgeKind[e] != EdgeKind::None; }
   std::vector<uint8_t> curveMask() const;
@@ -65,6 +70,21 @@ Segmentation segment(const EdgeGraph& g, const FeatureOptions& options, const Pr
 //! Used when a patch's conformal scale factor varies too much. Returns false when the patch is
 //! too small to split (fewer than 2 faces).
 bool splitPatch(const EdgeGraph& g, Segmentation& seg, uint32_t p, uint32_t parts = 2);
+
+//! Per input vertex: the smallest wedge (radians) between the input's own feature and boundary
+//! edges around it, the sum of the face angles between two consecutive such edges (cuts do not
+//! count: they are not features). 2π for a vertex no feature touches, the full angle sum for one
+//! on a single dangling feature edge. A vertex whose smallest wedge is below the angle bound is an
+//! input corner that no mesh of the surface can give better angles: the remesh exempts it.
+std::vector<double> featureWedgeAngles(const EdgeGraph& g, const Segmentation& seg);
+
+//! Cuts are ours, so where one meets another curve at a small angle (a Voronoi border arriving
+//! obliquely, three borders meeting at a point), the patch on the narrow side would have a small
+//! corner that no mesh can fix. Reroute such a cut end: from the cut's vertex about 3·scale
+//! before the end, the shortest path of input edges to a smooth point of another curve (a
+//! shortest path to a curve meets it at a right angle); kept only when the angle gets better and
+//! every patch stays a disk. Rebuilds the curves. Returns the number of ends rerouted.
+uint32_t improveCutJunctions(const EdgeGraph& g, Segmentation& seg, double scale);
 
 //! Recompute curves, corners and patches from seg.edgeKind (after edges were marked).
 void rebuildCurves(const EdgeGraph& g, Segmentation& seg);

@@ -19,6 +19,7 @@
 #include "mesh/validate.h"
 #include "planar/refine.h"
 #include "quality/metrics.h"
+#include "mesh/precondition.h"
 #include "remesh/optimize.h"
 #include "remesh/limits.h"
 
@@ -34,6 +35,9 @@ constexpr int kConformingRounds = 8;
 constexpr size_t kMinSplitFaces = 16;
 // Degrees added to the angle bound for the planar refinement (see meshPatch).
 constexpr double kPlanarAngleMargin = 2.0;
+// Input edges longer than this times the target edge length are split before segmentation, so
+// cuts along input edges are not sawtooths of needle edges (mesh/precondition.h).
+constexpr double kPreconditionEdgeFactor = 2.0;
 
 double elapsed(std::chrono::steady_clock::time_point& t) {
   auto now = std::chrono::steady_clock::now();
@@ -105,6 +109,7 @@ class Pipeline {
 
   const RemeshOptions& opt_;
   const ProgressFn& progress_;
+  Preconditioned pre_;  // the input after mesh/precondition.h (the first vertices are the input's)
   F::EdgeGraph g_;
   F::Segmentation seg_;
   F::SizingField sizing_;
@@ -642,15 +647,40 @@ RemeshResult Pipeline::run(const MeshBuffers& input) {
   rep_.seconds.validate = elapsed(t0);
 
   checkCancel(Stage::Segment, 0);
-  g_ = F::buildEdgeGraph(in);
   F::FeatureOptions fo;
   fo.featureAngleDeg = opt_.featureAngleDeg;
   fo.cornerTurnDeg = opt_.cornerTurnDeg;
+  std::vector<std::array<uint32_t, 2>> userFeatures;
   for (const auto& e : opt_.featureEdges) {
     if (e[0] >= vm.inputToVertex.size() || e[1] >= vm.inputToVertex.size())
       fail(Code::InvalidArgument, Stage::Segment, "a feature edge refers to a vertex out of range");
-    fo.featureEdges.push_back({vm.inputToVertex[e[0]], vm.inputToVertex[e[1]]});
+    userFeatures.push_back({vm.inputToVertex[e[0]], vm.inputToVertex[e[1]]});
   }
+  double target = 0, area = 0;
+  {  // the target edge length (cut junctions are judged at about it)
+    double lo[3] = {INFINITY, INFINITY, INFINITY}, hi[3] = {-INFINITY, -INFINITY, -INFINITY};
+    for (size_t v = 0; v < in.vertexCount(); ++v)
+      for (int k = 0; k < 3; ++k) lo[k] = std::min(lo[k], in.positions[3 * v + k]), hi[k] = std::max(hi[k], in.positions[3 * v + k]);
+    target = opt_.targetEdgeLength > 0 ? opt_.targetEdgeLength : opt_.targetEdgeLengthRel * std::hypot(hi[0] - lo[0], hi[1] - lo[1], hi[2] - lo[2]);
+    for (size_t f = 0; f < in.triangleCount(); ++f) {
+      const uint32_t* t = &in.triangles[3 * f];
+      F::Vec3 a{in.positions[3 * t[0]], in.positions[3 * t[0] + 1], in.positions[3 * t[0] + 2]};
+      F::Vec3 b{in.positions[3 * t[1]], in.positions[3 * t[1] + 1], in.positions[3 * t[1] + 2]};
+      F::Vec3 c{in.positions[3 * t[2]], in.positions[3 * t[2] + 1], in.positions[3 * t[2] + 2]};
+      area += 0.5 * F::norm(F::cross(b - a, c - a));
+    }
+  }
+  fo.junctionScale = target;
+  {  // input edges no longer than twice the target, flat pairs Delaunay (mesh/precondition.h)
+    PreconditionOptions po;
+    po.maxNewVertices = std::max<size_t>(200000, 2 * in.vertexCount());
+    // a tiny target on a big surface must not split without end: no more new vertices than
+    // the budget (the output limits are checked once the sizing is known)
+    po.maxEdgeLength = std::max(kPreconditionEdgeFactor * target, std::sqrt(area / (0.4 * double(po.maxNewVertices))));
+    pre_ = precondition(in, userFeatures, po);
+    fo.featureEdges = pre_.protectedEdges;
+  }
+  g_ = F::buildEdgeGraph(pre_.mesh);
   seg_ = F::segment(g_, fo, progress_);
   F::SizingOptions so;
   so.targetEdgeLength = opt_.targetEdgeLength;
@@ -663,8 +693,10 @@ RemeshResult Pipeline::run(const MeshBuffers& input) {
   if (!opt_.vertexSizing.empty()) {
     if (opt_.vertexSizing.size() != input.vertexCount())
       fail(Code::InvalidArgument, Stage::CurveMesh, "vertexSizing needs one value per input vertex");
-    so.vertexSizing.resize(in.vertexCount());
-    for (size_t v = 0; v < so.vertexSizing.size(); ++v) so.vertexSizing[v] = opt_.vertexSizing[vm.vertexToInput[v]];
+    so.vertexSizing.resize(g_.vertexCount);
+    for (size_t v = 0; v < so.vertexSizing.size(); ++v)
+      so.vertexSizing[v] = v < in.vertexCount() ? opt_.vertexSizing[vm.vertexToInput[v]]
+                                                : 0.5 * (so.vertexSizing[pre_.parents[v][0]] + so.vertexSizing[pre_.parents[v][1]]);
   }
   sizing_ = F::computeSizing(g_, seg_, so);
   {  // output size and memory limits, before the heavy work (remesh/limits.h)
@@ -726,21 +758,19 @@ RemeshResult Pipeline::run(const MeshBuffers& input) {
     rep_.conformingRounds = std::max(rep_.conformingRounds, round);
     rep_.seconds.refine += elapsed(t0);
     out = stitch(triPatch);
-    // exempt corners: input corners whose angle inside some patch is below the bound
+    // exempt corners: input vertices where the input's own feature or boundary curves make a
+    // wedge below the bound. Cuts are ours (not features): a small angle where a cut meets a
+    // curve is not exempt.
     if (exemptVertex.empty()) {
       exemptVertex.assign(out.vertexCount(), 0);
       rep_.exemptCorners.clear();
-      for (uint32_t p = 0; p < work_.size(); ++p) {
-        const auto& pm = work_[p]->pm;
-        std::vector<double> ang = cornerWedgeAngles(pm);
-        for (uint32_t v = 0; v < pm.vertexInput.size(); ++v) {
-          uint32_t iv = pm.vertexInput[v];
-          if (!seg_.vertexCorner[iv] || ang[v] * 180.0 / kPi >= opt_.minAngleDeg) continue;
-          uint32_t s = cm_.cornerSample[iv];
-          if (s == kNone || exemptVertex[s]) continue;
-          exemptVertex[s] = 1;
-          rep_.exemptCorners.push_back({vm.vertexToInput[iv], s, ang[v] * 180.0 / kPi, {}});
-        }
+      const std::vector<double> wedge = F::featureWedgeAngles(g_, seg_);
+      for (uint32_t iv = 0; iv < g_.vertexCount; ++iv) {
+        if (iv >= in.vertexCount() || !(wedge[iv] * 180.0 / kPi < opt_.minAngleDeg)) continue;
+        uint32_t s = iv < cm_.cornerSample.size() ? cm_.cornerSample[iv] : kNone;
+        if (s == kNone || s >= exemptVertex.size() || exemptVertex[s]) continue;
+        exemptVertex[s] = 1;
+        rep_.exemptCorners.push_back({vm.vertexToInput[iv], s, wedge[iv] * 180.0 / kPi, {}});
       }
     }
     exemptVertex.resize(out.vertexCount(), 0);
@@ -879,7 +909,7 @@ RemeshResult Pipeline::run(const MeshBuffers& input) {
   if (opt_.returnPatches) {
     res.patches = std::move(bestPatches);
     for (auto& rp : res.patches)
-      for (uint32_t& f : rp.layoutInputFace) f = vm.faceToInput[f];
+      for (uint32_t& f : rp.layoutInputFace) f = vm.faceToInput[pre_.faceOrigin[f]];
     res.patchOfTriangle = triPatch;
   }
   return res;

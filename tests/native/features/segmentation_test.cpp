@@ -14,6 +14,7 @@ using namespace conformesh;
 using namespace conformesh::features;
 
 namespace {
+constexpr double kPi = 3.14159265358979323846;
 uint32_t countCorners(const Segmentation& s, uint8_t kind) {
   return uint32_t(std::count(s.vertexCorner.begin(), s.vertexCorner.end(), kind));
 }
@@ -148,4 +149,87 @@ TEST_CASE("sizing: graded, clamped, smaller where curved") {
     uint32_t a = g.edgeVerts[e][0], b = g.edgeVerts[e][1];
     CHECK(std::abs(sz.h[a] - sz.h[b]) <= 0.5 * g.edgeLength(e) * (1 + 1e-9));
   }
+}
+
+TEST_CASE("features: featureWedgeAngles gives the wedges between the input's own feature curves") {
+  // cube(2): a corner has three 90° wedges, an edge midpoint two 180° ones, a face centre none
+  EdgeGraph g = buildEdgeGraph(testshapes::cube(2));
+  Segmentation s = segment(g, FeatureOptions{});
+  std::vector<double> w = featureWedgeAngles(g, s);
+  int corners = 0, edges = 0, centres = 0;  // vertices on 3, 2 and 1 faces of the cube
+  for (uint32_t v = 0; v < g.vertexCount; ++v) {
+    int onFace = 0;  // coordinates at 0 or 1 (the cube spans [0, s] or [-s/2, s/2]: count extremes)
+    double lo = INFINITY, hi = -INFINITY;
+    for (const auto& q : g.positions) lo = std::min(lo, q.x), hi = std::max(hi, q.x);
+    for (double c : {g.positions[v].x, g.positions[v].y, g.positions[v].z}) onFace += (std::abs(c - lo) < 1e-12 || std::abs(c - hi) < 1e-12);
+    const double expect = onFace == 3 ? kPi / 2 : onFace == 2 ? kPi : 2 * kPi;
+    CHECK(w[v] == doctest::Approx(expect));
+    corners += onFace == 3;
+    edges += onFace == 2;
+    centres += onFace == 1;
+  }
+  CHECK(corners == 8);
+  CHECK(edges == 12);
+  CHECK(centres == 6);
+}
+
+namespace {
+// Per cut end at a junction (three or more curve edges): the smallest angle, at the scale `l`,
+// between the cut and the other curves there.
+std::vector<double> cutJunctionAngles(const EdgeGraph& g, const Segmentation& s, double l) {
+  auto along = [&](std::vector<uint32_t> path) {
+    double acc = 0;
+    for (size_t i = 1; i < path.size(); ++i) {
+      Vec3 a = g.positions[path[i - 1]], b = g.positions[path[i]];
+      double e = norm(b - a);
+      if (acc + e >= l) return a + (b - a) * ((l - acc) / e);
+      acc += e;
+    }
+    return g.positions[path.back()];
+  };
+  std::vector<uint32_t> valence(g.vertexCount, 0);
+  for (uint32_t e = 0; e < g.edgeCount(); ++e)
+    if (s.isCurveEdge(e)) ++valence[g.edgeVerts[e][0]], ++valence[g.edgeVerts[e][1]];
+  std::vector<double> out;
+  for (uint32_t ci = 0; ci < s.curves.size(); ++ci) {
+    if (s.curves[ci].kind != EdgeKind::Cut) continue;
+    for (int end = 0; end < 2; ++end) {
+      std::vector<uint32_t> p = s.curves[ci].vertices;
+      if (end) std::reverse(p.begin(), p.end());
+      if (valence[p[0]] < 3) continue;
+      const Vec3 d = along(p) - g.positions[p[0]];
+      double best = kPi;
+      for (uint32_t cj = 0; cj < s.curves.size(); ++cj) {
+        if (cj == ci) continue;
+        for (int e2 = 0; e2 < 2; ++e2) {
+          std::vector<uint32_t> q = s.curves[cj].vertices;
+          if (e2) std::reverse(q.begin(), q.end());
+          if (q[0] == p[0]) best = std::min(best, angleBetween(d, along(q) - g.positions[p[0]]));
+        }
+      }
+      out.push_back(best);
+    }
+  }
+  return out;
+}
+}  // namespace
+
+TEST_CASE("features: improveCutJunctions opens up cuts that meet other curves at small angles, patches stay disks") {
+  // a torus cut into disks (Voronoi borders: oblique junctions and triple points)
+  EdgeGraph g = buildEdgeGraph(testshapes::torus(96, 40));
+  const double scale = 0.08;
+  FeatureOptions plain;
+  Segmentation s0 = segment(g, plain);
+  FeatureOptions fo;
+  fo.junctionScale = scale;
+  Segmentation s1 = segment(g, fo);
+  checkPatchesAreDisks(g, s1);
+  auto below = [&](const Segmentation& s, double deg) {
+    std::vector<double> a = cutJunctionAngles(g, s, scale);
+    return std::count_if(a.begin(), a.end(), [&](double x) { return x < deg * kPi / 180; });
+  };
+  MESSAGE("cut ends meeting a curve below 45 deg: " << below(s0, 45) << " -> " << below(s1, 45) << " (" << s1.reroutedCutEnds << " rerouted)");
+  CHECK(below(s1, 45) <= below(s0, 45));
+  CHECK(below(s1, 30) <= below(s0, 30));
+  CHECK(s1.reroutedCutEnds > 0);
 }

@@ -94,12 +94,10 @@ TEST_CASE("remesh: bad options and bad input come back as a status") {
 }
 
 // Models of ../shared/data that meet every property with the defaults, and (issue 9) a mean
-// per-triangle min angle of at least 50 degrees where marked (not yet: face.obj 49.5 and
-// blade.off 47.5 on 2026-11-28, with the default 2 optimization passes).
-TEST_CASE("remesh: shared/data models with the defaults (fandisk, spot, 3holes, holes, fertility, face, alligator, blade)") {
-  const std::pair<const char*, bool> models[] = {{"fandisk.off", true}, {"spot.obj", true}, {"3holes.off", true}, {"holes.off", true},
-                                                 {"fertility.off", true}, {"face.obj", false}, {"alligator.obj", true},
-                                                 {"blade.off", false}};
+// per-triangle min angle of at least 50 degrees where marked (blade.off: 47.6 on 2026-11-28,
+// with the default 2 optimization passes).
+TEST_CASE("remesh: shared/data models with the defaults (fandisk, 3holes, alligator, blade)") {
+  const std::pair<const char*, bool> models[] = {{"fandisk.off", true}, {"3holes.off", true}, {"alligator.obj", true}, {"blade.off", false}};
   for (const auto& model : models) {
     const char* name = model.first;
     const bool mean50 = model.second;
@@ -113,14 +111,17 @@ TEST_CASE("remesh: shared/data models with the defaults (fandisk, spot, 3holes, 
   }
 }
 
-// Not yet meeting the bound (issue 5): a few triangles stay below 30 degrees near small angles
-// between curves (the refinements of the two sides keep splitting each other's segments until
-// the conforming round cap; the last refinement of such a patch may not split its boundary).
-// The count moves with last-bit differences (stanford-bunny: 0 to 10 of 38k between builds), so
-// it is printed, not asserted; every other property is asserted. camelhead.off (4.6k of 156k,
-// ~40 s) is left to the benchmark.
-TEST_CASE("remesh: shared/data models whose bound is not yet met (stanford-bunny, mech-holes-shark, t13_data)") {
-  for (const char* name : {"stanford-bunny.obj", "mech-holes-shark.off", "t13_data.stl"}) {
+// Not yet meeting the bound (issue 5). Exempt corners are only the input's own: where its
+// feature or boundary curves make a wedge below the bound (featureWedgeAngles). Two causes remain:
+// (1) where a cut (ours, not a feature) meets another curve, or three cuts meet, one patch can
+// have a wedge below the bound that improveCutJunctions did not open up (spot, holes, fertility,
+// face, stanford-bunny); (2) near small angles between curves the refinements of the two sides
+// keep splitting each other's segments until the conforming round cap, and the last refinement of
+// such a patch may not split its boundary (mech-holes-shark, t13_data). The counts move with
+// last-bit differences, so they are printed; every other property is asserted. camelhead.off
+// (~2.5k of ~170k, ~17 s) is left to the benchmark.
+TEST_CASE("remesh: shared/data models whose bound is not yet met everywhere") {
+  for (const char* name : {"spot.obj", "holes.off", "fertility.off", "face.obj", "stanford-bunny.obj", "mech-holes-shark.off", "t13_data.stl"}) {
     ReadResult rr = readMesh(test::readFile(std::string(CONFORMESH_DATA_DIR) + "/" + name));
     RemeshOptions o;
     o.hausdorffSamples = 5000;
@@ -150,16 +151,20 @@ TEST_CASE("remesh: returnPatches gives each patch's planar mesh, consistent with
     const double* c = &p.uv[2 * p.triangles[3 * k + 2]];
     CHECK((b[0] - a[0]) * (c[1] - a[1]) - (b[1] - a[1]) * (c[0] - a[0]) > 0);
   }
-  size_t inputFaces = 0;
+  std::vector<uint8_t> covered(in.triangleCount(), 0);
   for (size_t i = 0; i < r.patches.size(); ++i) {
     const RemeshPatch& p = r.patches[i];
     CHECK(next[i] * 3 == p.triangles.size());
     CHECK(p.layoutUv.size() == 2 * p.layoutFactor.size());
     CHECK(p.layoutTriangles.size() == 3 * p.layoutInputFace.size());
-    for (uint32_t f : p.layoutInputFace) CHECK(f < in.triangleCount());
-    inputFaces += p.layoutInputFace.size();
+    for (uint32_t f : p.layoutInputFace) {
+      REQUIRE(f < in.triangleCount());
+      covered[f] = 1;
+    }
   }
-  CHECK(inputFaces == in.triangleCount());  // the patches partition the input
+  // the patches cover the input (whose triangles may be split where their edges are longer than
+  // twice the target, mesh/precondition.h)
+  CHECK(std::count(covered.begin(), covered.end(), uint8_t(0)) == 0);
 }
 
 TEST_CASE("remesh: every boundary condition tried first gives a valid remesh of the cube") {
