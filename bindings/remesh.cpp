@@ -51,6 +51,7 @@ val reportToJs(const RemeshReport& r) {
   o.set("featureCurvesKept", double(r.featureCurvesKept));
   o.set("sharpEdges", double(r.sharpEdges));
   o.set("cutEdges", double(r.cutEdges));
+  o.set("droppedFeatureEdges", double(r.droppedFeatureEdges));
   o.set("patches", double(r.patches));
   o.set("curves", double(r.curves));
   o.set("curveSamples", double(r.curveSamples));
@@ -122,6 +123,7 @@ val remeshJs(val positions, val triangles, val vertexSizing, val featureEdges, v
     o.maxEdgeLength = bindings::numberOption(options, "maxEdgeLength", o.maxEdgeLength, st);
     o.featureAngleDeg = bindings::numberOption(options, "featureAngle", o.featureAngleDeg, st, 0, 180);
     o.cornerTurnDeg = bindings::numberOption(options, "cornerTurn", o.cornerTurnDeg, st, 0, 180);
+    o.minFeatureLength = bindings::numberOption(options, "minFeatureLength", o.minFeatureLength, st);
     o.maxScaleRatio = bindings::numberOption(options, "maxScaleRatio", o.maxScaleRatio, st, 1);
     o.maxCertificateRounds =
         int(bindings::numberOption(options, "maxCertificateRounds", o.maxCertificateRounds, st, 0, 100));

@@ -177,6 +177,7 @@ const remeshKeys: (keyof RemeshOptions)[] = [
   'maxEdgeLength',
   'featureAngle',
   'cornerTurn',
+  'minFeatureLength',
   'maxScaleRatio',
   'maxCertificateRounds',
   'optimize',

@@ -167,7 +167,7 @@ const refine2dUsage =
 const flattenUsage =
   'flatten IN -o OUT.obj [--boundary circle|free|corners] [--corner-angle DEG] [--no-flips] [--json]';
 const remeshUsage =
-  'remesh IN -o OUT [--min-angle D] [--edge-length L | --edge-length-rel R] [--feature-angle D] [--chord-tol T] [--boundary free|corners|circle] [--max-triangles N] [--max-vertices N] [--json] [--no-hausdorff] [--no-optimize]';
+  'remesh IN -o OUT [--min-angle D] [--edge-length L | --edge-length-rel R] [--feature-angle D] [--min-feature-length L] [--chord-tol T] [--boundary free|corners|circle] [--max-triangles N] [--max-vertices N] [--json] [--no-hausdorff] [--no-optimize]';
 
 const infoUsage = 'info FILE [--json] [--weld TOL] [--format NAME]';
 
@@ -276,7 +276,7 @@ const commands: Record<string, Command> = {
   remesh: {
     usage: remeshUsage,
     summary: 'remesh a surface: conformal flattening per patch, planar Delaunay refinement, lift',
-    valueFlags: ['-o', '--min-angle', '--edge-length', '--edge-length-rel', '--feature-angle', '--chord-tol', '--max-triangles', '--max-vertices', '--boundary'],
+    valueFlags: ['-o', '--min-angle', '--edge-length', '--edge-length-rel', '--feature-angle', '--min-feature-length', '--chord-tol', '--max-triangles', '--max-vertices', '--boundary'],
     switches: ['--json', '--no-hausdorff', '--no-optimize'],
     async run(args, api) {
       if (args.positional.length !== 1) throw new ConformeshError('InvalidArgument', 'api', 'remesh needs exactly one input file');
@@ -287,6 +287,7 @@ const commands: Record<string, Command> = {
         targetEdgeLength: numberFlag(args, '--edge-length', 0),
         targetEdgeLengthRel: numberFlag(args, '--edge-length-rel', 0.01),
         featureAngle: numberFlag(args, '--feature-angle', 40),
+        minFeatureLength: numberFlag(args, '--min-feature-length', -1),
         chordTolerance: numberFlag(args, '--chord-tol', -1),
         computeHausdorff: !args.flags.has('--no-hausdorff'),
         optimize: !args.flags.has('--no-optimize'),

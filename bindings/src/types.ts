@@ -285,6 +285,9 @@ export interface RemeshOptions {
   featureAngle?: number;
   /** Turning angle of a feature curve that makes a corner; default 50. */
   cornerTurn?: number;
+  /** Chains of sharp edges shorter than this in all are not features (absolute; < 0 or
+   *  absent: twice the target edge length; 0: keep every sharp edge). */
+  minFeatureLength?: number;
   /** A patch whose scale factor ratio exceeds this is split; default 50. */
   maxScaleRatio?: number;
   /** Rounds of the 3D angle certificate; default 3. */
@@ -354,6 +357,8 @@ export interface RemeshReport {
   featureCurvesKept: number;
   sharpEdges: number;
   cutEdges: number;
+  /** Sharp edges dropped as chains shorter than minFeatureLength. */
+  droppedFeatureEdges: number;
   patches: number;
   curves: number;
   curveSamples: number;

@@ -91,7 +91,7 @@ int run(const std::vector<std::string>& argv) {
   for (const auto& a : argv) json = json || a == "--json";
   try {
     Args args = parseArgs(argv,
-                          {"-o", "--min-angle", "--edge-length", "--edge-length-rel", "--feature-angle", "--chord-tol",
+                          {"-o", "--min-angle", "--edge-length", "--edge-length-rel", "--feature-angle", "--min-feature-length", "--chord-tol",
                            "--max-triangles", "--max-vertices", "--boundary"},
                           {"--json", "--no-hausdorff", "--no-optimize"});
     if (args.positional.size() != 1) fail(Code::InvalidArgument, Stage::Api, "remesh needs exactly one input file");
@@ -102,6 +102,7 @@ int run(const std::vector<std::string>& argv) {
     opt.targetEdgeLength = args.number("--edge-length", 0.0);
     opt.targetEdgeLengthRel = args.number("--edge-length-rel", opt.targetEdgeLengthRel);
     opt.featureAngleDeg = args.number("--feature-angle", opt.featureAngleDeg);
+    opt.minFeatureLength = args.number("--min-feature-length", opt.minFeatureLength);
     opt.chordTolerance = args.number("--chord-tol", opt.chordTolerance);
     opt.computeHausdorff = !args.has("--no-hausdorff");
     opt.optimize = !args.has("--no-optimize");
@@ -136,7 +137,7 @@ int run(const std::vector<std::string>& argv) {
 
 const CommandRegistrar registrar({"remesh",
                                   "remesh IN -o OUT [--min-angle D] [--edge-length L | --edge-length-rel R] "
-                                  "[--feature-angle D] [--chord-tol T] [--boundary free|corners|circle] [--max-triangles N] [--max-vertices N] [--json] "
+                                  "[--feature-angle D] [--min-feature-length L] [--chord-tol T] [--boundary free|corners|circle] [--max-triangles N] [--max-vertices N] [--json] "
                                   "[--no-hausdorff] [--no-optimize]",
                                   "remesh a surface: conformal flattening per patch, planar Delaunay refinement, lift",
                                   run});

@@ -221,26 +221,63 @@ Vec3 pointAlong(const EdgeGraph& g, const std::vector<uint32_t>& path, double le
 
 }  // namespace
 
+// The faces of patches a and b (as they were) regrouped across the edges that are not curves now:
+// exactly two groups, each a disk.
+bool splitsIntoTwoDisks(const EdgeGraph& g, const Segmentation& seg, const std::vector<uint32_t>& a, const std::vector<uint32_t>& b) {
+  std::vector<uint32_t> faces(a);
+  faces.insert(faces.end(), b.begin(), b.end());
+  std::sort(faces.begin(), faces.end());
+  std::vector<uint32_t> label(faces.size(), kNone), stack;
+  auto slot = [&](uint32_t f) {
+    auto it = std::lower_bound(faces.begin(), faces.end(), f);
+    return it != faces.end() && *it == f ? uint32_t(it - faces.begin()) : kNone;
+  };
+  std::vector<std::vector<uint32_t>> groups;
+  for (uint32_t i0 = 0; i0 < faces.size(); ++i0) {
+    if (label[i0] != kNone) continue;
+    if (groups.size() == 2) return false;
+    label[i0] = uint32_t(groups.size());
+    groups.emplace_back();
+    stack.push_back(i0);
+    while (!stack.empty()) {
+      const uint32_t i = stack.back();
+      stack.pop_back();
+      groups.back().push_back(faces[i]);
+      for (uint32_t e : g.faceEdges[faces[i]]) {
+        if (seg.isCurveEdge(e)) continue;
+        const uint32_t o = g.edgeFaces[e][0] == faces[i] ? g.edgeFaces[e][1] : g.edgeFaces[e][0];
+        const uint32_t j = o == kNone ? kNone : slot(o);
+        if (j != kNone && label[j] == kNone) {
+          label[j] = label[i];
+          stack.push_back(j);
+        }
+      }
+    }
+  }
+  if (groups.size() != 2) return false;
+  const std::vector<uint8_t> mask = seg.curveMask();
+  for (const auto& gr : groups)
+    if (!extractPatch(g, mask, gr, false).isDisk()) return false;
+  return true;
+}
+
 uint32_t improveCutJunctions(const EdgeGraph& g, Segmentation& seg, double scale) {
   if (!(scale > 0)) return 0;
   const double kAim = 60.0 * kPi / 180.0;   // ends meeting another curve below this are rerouted
   const double kGain = 5.0 * kPi / 180.0;   // a reroute must improve the angle by this much
+  const int kPasses = 8;                     // one reroute per patch and pass
   const std::vector<EdgeKind> original = seg.edgeKind;
   std::vector<uint32_t> valence(g.vertexCount, 0);
   std::vector<double> dist(g.vertexCount, INFINITY);
   std::vector<uint32_t> predEdge(g.vertexCount, kNone), seen;
   std::vector<uint8_t> changed(g.vertexCount, 0), forbidden(g.vertexCount, 0);
   uint32_t total = 0;
-  for (int pass = 0; pass < 3; ++pass) {
+  for (int pass = 0; pass < kPasses; ++pass) {
     std::fill(valence.begin(), valence.end(), 0);
     for (uint32_t e = 0; e < g.edgeCount(); ++e)
       if (seg.isCurveEdge(e)) ++valence[g.edgeVerts[e][0]], ++valence[g.edgeVerts[e][1]];
     std::fill(changed.begin(), changed.end(), 0);
     std::vector<uint8_t> usedPatch(seg.patches.size(), 0);
-    // how many curves lie between each pair of patches: a cut is rerouted only when it is the one
-    // curve between its two patches (else the merged region would not be a disk)
-    std::map<std::pair<uint32_t, uint32_t>, uint32_t> between;
-    for (const Curve& c : seg.curves) ++between[{std::min(c.patches[0], c.patches[1]), std::max(c.patches[0], c.patches[1])}];
     // the curve ends at every corner: (curve, 0 = starts there / 1 = ends there)
     std::vector<std::vector<std::pair<uint32_t, int>>> ends(g.vertexCount);
     for (uint32_t ci = 0; ci < seg.curves.size(); ++ci) {
@@ -258,7 +295,6 @@ uint32_t improveCutJunctions(const EdgeGraph& g, Segmentation& seg, double scale
       if (c.kind != EdgeKind::Cut || c.patches[0] == kNone || c.patches[1] == kNone || c.patches[0] == c.patches[1])
         continue;
       const uint32_t A = c.patches[0], B = c.patches[1];
-      if (between[{std::min(A, B), std::max(A, B)}] != 1) continue;
       for (int end = 0; end < 2; ++end) {
         // one reroute per patch and pass (patch ids are rebuilt between passes)
         if (usedPatch[A] || usedPatch[B]) break;
@@ -282,7 +318,7 @@ uint32_t improveCutJunctions(const EdgeGraph& g, Segmentation& seg, double scale
         size_t k = 1;
         for (double acc = 0; k + 1 < path.size(); ++k) {
           acc += norm(g.positions[path[k]] - g.positions[path[k - 1]]);
-          if (acc >= 3 * l) break;
+          if (acc >= std::min(3 * l, 0.5 * c.length)) break;
         }
         if (k + 1 >= path.size()) continue;
         const uint32_t u = path[k];
@@ -294,30 +330,31 @@ uint32_t improveCutJunctions(const EdgeGraph& g, Segmentation& seg, double scale
           --valence[path[i]], --valence[path[i + 1]];
         }
         for (size_t i = k + 1; i < path.size(); ++i) forbidden[path[i]] = 1;
-        // Dijkstra from u through vertices on no curve, to the nearest smooth point of a curve
+        // Dijkstra from u through vertices on no curve; every smooth curve point it reaches is a
+        // landing candidate (the nearest one meets its curve at about a right angle, but it may
+        // be on another curve or next to a corner: each candidate's angle is measured)
         using Item = std::pair<double, uint32_t>;
         std::priority_queue<Item, std::vector<Item>, std::greater<Item>> pq;
         dist[u] = 0;
         seen.push_back(u);
         pq.push({0.0, u});
-        uint32_t hit = kNone;
+        std::vector<uint32_t> landings;
         const double radius = 12 * l;
         while (!pq.empty()) {
           auto [d, x] = pq.top();
           pq.pop();
           if (d > dist[x]) continue;
           if (x != u && valence[x] > 0) {
-            hit = x;
-            break;
+            landings.push_back(x);  // a landing point: the path does not go on through it
+            continue;
           }
           for (uint32_t kk = g.vertexEdgeStart[x]; kk < g.vertexEdgeStart[x + 1]; ++kk) {
             const uint32_t e = g.vertexEdgeIds[kk];
             if (seg.isCurveEdge(e)) continue;
             const uint32_t y = g.otherVertex(e, x);
             if (y == u || forbidden[y] || changed[y]) continue;
-            // a curve vertex is a landing point only when it is a smooth point of a curve (or
-            // the old end itself)
-            if (valence[y] > 0 && y != v && (valence[y] != 2 || seg.vertexCorner[y])) continue;
+            // a curve vertex is a landing point only when it is a smooth point of a curve
+            if (valence[y] > 0 && (y == v || valence[y] != 2 || seg.vertexCorner[y])) continue;
             const double nd = d + g.edgeLength(e);
             if (nd < dist[y] && nd <= radius) {
               if (std::isinf(dist[y])) seen.push_back(y);
@@ -327,34 +364,38 @@ uint32_t improveCutJunctions(const EdgeGraph& g, Segmentation& seg, double scale
             }
           }
         }
-        bool commit = false;
-        std::vector<uint32_t> newPath;  // from the landing point to u
-        if (hit != kNone && hit != v) {
-          for (uint32_t x = hit; x != u; x = g.otherVertex(predEdge[x], x)) newPath.push_back(x);
-          newPath.push_back(u);
-          std::vector<uint32_t> cutPath = newPath;
+        // the landing that makes the largest angle with its curve (the nearer one on ties)
+        const auto inAB = [&](uint32_t q) { return q == A || q == B; };
+        double bestAngle = old + kGain;
+        uint32_t hit = kNone;
+        for (uint32_t x : landings) {
+          std::vector<uint32_t> cutPath;
+          for (uint32_t y = x; y != u; y = g.otherVertex(predEdge[y], y)) cutPath.push_back(y);
+          cutPath.push_back(u);
           cutPath.insert(cutPath.end(), path.begin() + long(k) + 1, path.end());
-          const Vec3 dn = pointAlong(g, cutPath, l) - g.positions[hit];
-          // the landing curve's two directions from the hit point
+          const Vec3 dn = pointAlong(g, cutPath, l) - g.positions[x];
           uint32_t cj = kNone;
-          for (uint32_t kk = g.vertexEdgeStart[hit]; kk < g.vertexEdgeStart[hit + 1] && cj == kNone; ++kk)
+          for (uint32_t kk = g.vertexEdgeStart[x]; kk < g.vertexEdgeStart[x + 1] && cj == kNone; ++kk)
             if (seg.isCurveEdge(g.vertexEdgeIds[kk])) cj = seg.edgeCurve[g.vertexEdgeIds[kk]];
           // the landing curve must have exactly one side in the merged region A ∪ B, else the
           // new cut would leave a patch touching itself at the landing point
-          const auto inAB = [&](uint32_t q) { return q == A || q == B; };
-          if (cj != kNone && inAB(seg.curves[cj].patches[0]) != inAB(seg.curves[cj].patches[1])) {
-            const auto& cv = seg.curves[cj].vertices;
-            const auto it = std::find(cv.begin(), cv.end(), hit);
-            if (it != cv.end()) {
-              std::vector<uint32_t> fwd(it, cv.end()), back(cv.begin(), it + 1);
-              std::reverse(back.begin(), back.end());
-              double now = kPi;
-              for (const auto* side : {&fwd, &back})
-                if (side->size() > 1) now = std::min(now, angleBetween(dn, pointAlong(g, *side, l) - g.positions[hit]));
-              commit = now > old + kGain;
-            }
-          }
+          if (cj == kNone || inAB(seg.curves[cj].patches[0]) == inAB(seg.curves[cj].patches[1])) continue;
+          const auto& cv = seg.curves[cj].vertices;
+          const auto it = std::find(cv.begin(), cv.end(), x);
+          if (it == cv.end()) continue;
+          std::vector<uint32_t> fwd(it, cv.end()), back(cv.begin(), it + 1);
+          std::reverse(back.begin(), back.end());
+          double now = kPi;
+          for (const auto* side : {&fwd, &back})
+            if (side->size() > 1) now = std::min(now, angleBetween(dn, pointAlong(g, *side, l) - g.positions[x]));
+          if (now > bestAngle + 1e-9) bestAngle = now, hit = x;
         }
+        std::vector<uint32_t> newPath;  // from the landing point to u
+        if (hit != kNone) {
+          for (uint32_t x = hit; x != u; x = g.otherVertex(predEdge[x], x)) newPath.push_back(x);
+          newPath.push_back(u);
+        }
+        bool commit = hit != kNone;
         for (uint32_t x : seen) dist[x] = INFINITY, predEdge[x] = kNone;
         seen.clear();
         for (size_t i = k + 1; i < path.size(); ++i) forbidden[path[i]] = 0;
@@ -364,11 +405,20 @@ uint32_t improveCutJunctions(const EdgeGraph& g, Segmentation& seg, double scale
             seg.edgeKind[e] = EdgeKind::Cut;
             ++valence[newPath[i]], ++valence[newPath[i + 1]];
           }
-          for (uint32_t x : path) changed[x] = 1;
-          for (uint32_t x : newPath) changed[x] = 1;
-          usedPatch[A] = usedPatch[B] = 1;
-          ++moved;
-        } else {
+          if (splitsIntoTwoDisks(g, seg, seg.patches[A], seg.patches[B])) {
+            for (uint32_t x : path) changed[x] = 1;
+            for (uint32_t x : newPath) changed[x] = 1;
+            usedPatch[A] = usedPatch[B] = 1;
+            ++moved;
+          } else {  // A and B share another curve: the new cut does not give two disks
+            for (size_t i = 0; i + 1 < newPath.size(); ++i) {
+              seg.edgeKind[g.findEdge(newPath[i], newPath[i + 1])] = EdgeKind::None;
+              --valence[newPath[i]], --valence[newPath[i + 1]];
+            }
+            commit = false;
+          }
+        }
+        if (!commit) {
           for (size_t i = 0; i < k; ++i) {
             seg.edgeKind[oldEdges[i]] = EdgeKind::Cut;
             ++valence[path[i]], ++valence[path[i + 1]];
@@ -571,6 +621,27 @@ Segmentation segment(const EdgeGraph& g, const FeatureOptions& options, const Pr
       seg.edgeKind[e] = EdgeKind::Feature;
       ++seg.sharpEdgeCount;
     }
+  }
+  if (options.minFeatureLength > 0) {
+    // Connected chains of sharp edges shorter than minFeatureLength in all are noise (a scan's
+    // bumps), or a feature no output edge could follow: they are not features.
+    std::vector<uint32_t> parent(g.vertexCount);
+    for (uint32_t v = 0; v < g.vertexCount; ++v) parent[v] = v;
+    auto find = [&](uint32_t v) {
+      while (parent[v] != v) v = parent[v] = parent[parent[v]];
+      return v;
+    };
+    for (uint32_t e = 0; e < g.edgeCount(); ++e)
+      if (seg.edgeKind[e] == EdgeKind::Feature) parent[find(g.edgeVerts[e][0])] = find(g.edgeVerts[e][1]);
+    std::vector<double> length(g.vertexCount, 0.0);
+    for (uint32_t e = 0; e < g.edgeCount(); ++e)
+      if (seg.edgeKind[e] == EdgeKind::Feature) length[find(g.edgeVerts[e][0])] += g.edgeLength(e);
+    for (uint32_t e = 0; e < g.edgeCount(); ++e)
+      if (seg.edgeKind[e] == EdgeKind::Feature && length[find(g.edgeVerts[e][0])] < options.minFeatureLength) {
+        seg.edgeKind[e] = EdgeKind::None;
+        --seg.sharpEdgeCount;
+        ++seg.droppedFeatureEdges;
+      }
   }
   for (const auto& fe : options.featureEdges) {
     if (fe[0] >= g.vertexCount || fe[1] >= g.vertexCount)

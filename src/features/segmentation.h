@@ -22,6 +22,10 @@ struct FeatureOptions {
   double featureAngleDeg = 40.0;
   //! A vertex inside a curve becomes a corner when the polyline turns by more than this (degrees).
   double cornerTurnDeg = 50.0;
+  //! Chains of sharp edges (connected through shared vertices) whose total length is below this
+  //! are dropped: noise of a scanned surface, or features no output edge could follow. 0 keeps
+  //! every sharp edge. User feature edges are never dropped.
+  double minFeatureLength = 0.0;
   //! User feature edges as vertex pairs (need not be sharp). A pair that is not an edge is an
   //! InvalidArgument error.
   std::vector<std::array<uint32_t, 2>> featureEdges;
@@ -56,6 +60,7 @@ struct Segmentation {
   double cornerTurnDeg = 50.0;  //!< the option used, kept for rebuildCurves after splits
   double junctionScale = 0.0;  //!< the option used, kept for splitPatch
   uint32_t reroutedCutEnds = 0;  //!< cut ends moved by improveCutJunctions
+  uint32_t droppedFeatureEdges = 0;  //!< sharp edges in chains shorter than minFeatureLength
 
   bool isCurveEdge(uint32_t e) const { return edgeKind[e] != EdgeKind::None; }
   std::vector<uint8_t> curveMask() const;

@@ -43,6 +43,14 @@ OutputEstimate estimateOutput(const features::EdgeGraph& g, const features::Sizi
   return e;
 }
 
+OutputEstimate estimateFromTarget(double area, double target, size_t inputTriangles) {
+  OutputEstimate e;
+  e.triangles = kTrianglesPerEquilateral * area / (std::sqrt(3.0) / 4.0 * target * target);
+  e.vertices = 0.5 * e.triangles;
+  e.bytes = kBytesPerInputTriangle * double(inputTriangles) + kBytesPerOutputTriangle * e.triangles;
+  return e;
+}
+
 void checkOutputEstimate(const OutputEstimate& e, const RemeshOptions& o) {
   requireLimit(double(o.maxTriangles), "maxTriangles");
   requireLimit(double(o.maxVertices), "maxVertices");

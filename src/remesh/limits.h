@@ -45,6 +45,10 @@ constexpr double kTrianglesPerEquilateral = 1.3;
 //! counts are checked again after refinement. Pre: sizing.h has one positive value per vertex of g.
 OutputEstimate estimateOutput(const features::EdgeGraph& g, const features::SizingField& sizing);
 
+//! A first estimate from the target edge length alone (curvature only adds triangles), for the
+//! checks before the input is preconditioned: the same formulas with h = target everywhere.
+OutputEstimate estimateFromTarget(double area, double target, size_t inputTriangles);
+
 //! Throws Error(InvalidArgument, Api) when a limit option is 0 or NaN (0 does not mean "no
 //! limit": pass a huge value for that), and Error(TooLarge, CurveMesh) when the estimate exceeds
 //! maxTriangles, maxVertices or maxMemoryBytes; the message gives the estimate and the limit.

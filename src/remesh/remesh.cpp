@@ -17,6 +17,7 @@
 #include "features/segmentation.h"
 #include "features/sizing.h"
 #include "mesh/validate.h"
+#include "planar/predicates.h"
 #include "planar/refine.h"
 #include "quality/metrics.h"
 #include "mesh/precondition.h"
@@ -35,6 +36,13 @@ constexpr int kConformingRounds = 8;
 constexpr size_t kMinSplitFaces = 16;
 // Degrees added to the angle bound for the planar refinement (see meshPatch).
 constexpr double kPlanarAngleMargin = 2.0;
+// Default minFeatureLength in target edge lengths: a chain of sharp edges shorter than two
+// output edges gets at most one sample inside, too few to carry a feature; on scans such chains
+// are bumps of the noise, and each one needs cuts to join the rest (measured on
+// stanford-bunny: 1046 curves, 188 patches with all sharp edges kept).
+constexpr double kMinFeatureFactor = 2.0;
+// Times a patch's boundary chords may be split where they cross before refinement gives up.
+constexpr int kCrossingRepairs = 8;
 // Input edges longer than this times the target edge length are split before segmentation, so
 // cuts along input edges are not sawtooths of needle edges (mesh/precondition.h).
 constexpr double kPreconditionEdgeFactor = 2.0;
@@ -411,6 +419,45 @@ bool degenerateBoundary(const std::vector<BoundaryPoint>& bp) {
   return off < 1e-6 * span;
 }
 
+// The segments of a closed boundary polygon that cross another one (or fold back onto their
+// neighbour), by exact orientation tests over all pairs: only used when refinement rejected the
+// polygon, which is rare.
+std::vector<uint32_t> crossingSegments(const planar::Pslg& pslg) {
+  const uint32_t n = uint32_t(pslg.segments.size() / 2);
+  const double* P = pslg.points.data();
+  auto pt = [&](uint32_t s, int end) { return P + 2 * pslg.segments[2 * s + end]; };
+  auto sgn = [](double x) { return (x > 0) - (x < 0); };
+  std::vector<uint8_t> bad(n, 0);
+  for (uint32_t i = 0; i < n; ++i)
+    for (uint32_t j = i + 1; j < n; ++j) {
+      const double *a = pt(i, 0), *b = pt(i, 1), *c = pt(j, 0), *d = pt(j, 1);
+      const bool adjacent = pslg.segments[2 * i + 1] == pslg.segments[2 * j] || pslg.segments[2 * j + 1] == pslg.segments[2 * i];
+      if (adjacent) {
+        // shared endpoint m, far ends x (of i) and y (of j): they fold back when collinear and
+        // on the same side of m
+        const bool iFirst = pslg.segments[2 * i + 1] == pslg.segments[2 * j];
+        const double* m = iFirst ? b : a;
+        const double* x = iFirst ? a : b;
+        const double* y = iFirst ? d : c;
+        if (planar::orient2d(x, m, y) == 0 && (x[0] - m[0]) * (y[0] - m[0]) + (x[1] - m[1]) * (y[1] - m[1]) > 0) bad[i] = bad[j] = 1;
+        continue;
+      }
+      const int o1 = sgn(planar::orient2d(a, b, c)), o2 = sgn(planar::orient2d(a, b, d));
+      const int o3 = sgn(planar::orient2d(c, d, a)), o4 = sgn(planar::orient2d(c, d, b));
+      if (o1 * o2 > 0 || o3 * o4 > 0) continue;
+      if (o1 == 0 && o2 == 0) {  // collinear: crossing only when the spans overlap
+        const int k = std::abs(b[0] - a[0]) >= std::abs(b[1] - a[1]) ? 0 : 1;
+        const double lo1 = std::min(a[k], b[k]), hi1 = std::max(a[k], b[k]), lo2 = std::min(c[k], d[k]), hi2 = std::max(c[k], d[k]);
+        if (hi1 < lo2 || hi2 < lo1) continue;
+      }
+      bad[i] = bad[j] = 1;
+    }
+  std::vector<uint32_t> out;
+  for (uint32_t i = 0; i < n; ++i)
+    if (bad[i]) out.push_back(i);
+  return out;
+}
+
 // Lift a planar point onto the input surface. The PSLG's boundary segments are chords of the
 // flattened boundary (between curve samples), so a refinement vertex near a concave stretch of
 // boundary can lie just outside the flattened patch: it is lifted from the nearest point of the
@@ -493,7 +540,28 @@ void Pipeline::meshPatch(uint32_t p, bool splitSegments) {
   double area3 = 0;
   for (uint32_t f : w.pm.faceInput) area3 += g_.faceArea(f);
   ro.maxInsertions = size_t(std::min(4e7, 50.0 * area3 / (sizing_.minLength * sizing_.minLength) + 1e5));
-  planar::RefineResult rr = planar::refinePslg(pslg, ro);
+  planar::RefineResult rr;
+  for (int attempt = 0;; ++attempt) {
+    try {
+      rr = planar::refinePslg(pslg, ro);
+      break;
+    } catch (const Error& e) {
+      if (e.code() != Code::InvalidPslg || attempt >= kCrossingRepairs) throw;
+    }
+    // The chords between boundary samples cross where the boundary doubles back within a sample
+    // spacing: split the crossing chords (shared with the neighbours like any segment split)
+    // and try again.
+    const std::vector<uint32_t> crossing = crossingSegments(pslg);
+    if (crossing.empty()) fail(Code::InternalError, Stage::Refine, "patch " + std::to_string(p) + ": invalid boundary, but no chords cross");
+    for (uint32_t sg : crossing) addSplitSample(w, bp, sg, 0.5);
+    w.builtAt = ++stamp_;
+    w.dirty = false;
+    bp = boundaryPoints(w);
+    pslg.points.clear();
+    pslg.segments.clear();
+    for (const auto& b : bp) pslg.points.insert(pslg.points.end(), {b.x, b.y});
+    for (uint32_t i = 0; i < bp.size(); ++i) pslg.segments.insert(pslg.segments.end(), {i, uint32_t((i + 1) % bp.size())});
+  }
   if (!rr.status.ok()) fail(rr.status.code, Stage::Refine, "patch " + std::to_string(p) + ": " + rr.status.message);
   const auto& pmsh = rr.mesh;
   auto tl = std::chrono::steady_clock::now();
@@ -670,13 +738,16 @@ RemeshResult Pipeline::run(const MeshBuffers& input) {
       area += 0.5 * F::norm(F::cross(b - a, c - a));
     }
   }
+  // over the limits already with the target alone: TooLarge before any heavy work
+  if (target > 0) checkOutputEstimate(estimateFromTarget(area, target, in.triangleCount()), opt_);
   fo.junctionScale = target;
+  fo.minFeatureLength = opt_.minFeatureLength >= 0 ? opt_.minFeatureLength : kMinFeatureFactor * target;
   {  // input edges no longer than twice the target, flat pairs Delaunay (mesh/precondition.h)
     PreconditionOptions po;
     po.maxNewVertices = std::max<size_t>(200000, 2 * in.vertexCount());
     // a tiny target on a big surface must not split without end: no more new vertices than
     // the budget (the output limits are checked once the sizing is known)
-    po.maxEdgeLength = std::max(kPreconditionEdgeFactor * target, std::sqrt(area / (0.4 * double(po.maxNewVertices))));
+    po.maxEdgeLength = target > 0 ? std::max(kPreconditionEdgeFactor * target, std::sqrt(area / (0.4 * double(po.maxNewVertices)))) : 0.0;
     pre_ = precondition(in, userFeatures, po);
     fo.featureEdges = pre_.protectedEdges;
   }
@@ -882,6 +953,7 @@ RemeshResult Pipeline::run(const MeshBuffers& input) {
   }
   rep_.sharpEdges = seg_.sharpEdgeCount;
   rep_.cutEdges = seg_.cutEdgeCount;
+  rep_.droppedFeatureEdges = seg_.droppedFeatureEdges;
   rep_.patches = work_.size();
   rep_.curves = seg_.curves.size();
   rep_.curveSamples = cm_.samples.size();

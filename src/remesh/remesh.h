@@ -41,6 +41,10 @@ struct RemeshOptions {
   double featureAngleDeg = 40.0;
   //! A feature curve turning by more than this at a vertex gets a corner there (degrees).
   double cornerTurnDeg = 50.0;
+  //! Chains of sharp edges (connected through shared vertices) shorter than this in all are not
+  //! features (absolute; < 0: twice the target edge length; 0: keep every sharp edge). User
+  //! feature edges are always kept. The report counts the dropped edges.
+  double minFeatureLength = -1.0;
   //! User feature edges (input vertex pairs).
   std::vector<std::array<uint32_t, 2>> featureEdges;
   //! The boundary condition each patch's flattening tries first; when its layout fails (overlaps
@@ -109,6 +113,7 @@ struct RemeshReport {
   double maxDistanceToInputRel = 0;  //!< largest output vertex distance to the input / diagonal
   size_t featureCurves = 0, featureCurvesKept = 0;
   size_t sharpEdges = 0, cutEdges = 0;
+  size_t droppedFeatureEdges = 0;  //!< sharp edges in chains shorter than minFeatureLength
   size_t patches = 0, curves = 0, curveSamples = 0;
   std::vector<int> flowIterations;  //!< Newton iterations per patch
   size_t patchSplitsForScale = 0;

@@ -233,3 +233,26 @@ TEST_CASE("features: improveCutJunctions opens up cuts that meet other curves at
   CHECK(below(s1, 30) <= below(s0, 30));
   CHECK(s1.reroutedCutEnds > 0);
 }
+
+TEST_CASE("features: minFeatureLength drops chains of sharp edges shorter than it, never user feature edges") {
+  EdgeGraph g = buildEdgeGraph(testshapes::cube(4));  // one network of sharp edges, 12 long in all
+  FeatureOptions keep;
+  keep.minFeatureLength = 11.9;
+  Segmentation s = segment(g, keep);
+  CHECK(s.sharpEdgeCount == 48);
+  CHECK(s.droppedFeatureEdges == 0);
+  CHECK(s.curves.size() == 12);
+  FeatureOptions drop;
+  drop.minFeatureLength = 12.1;
+  // a user feature edge survives: one edge of the cube's network
+  uint32_t ue = kNone;
+  for (uint32_t e = 0; e < g.edgeCount() && ue == kNone; ++e)
+    if (s.edgeKind[e] == EdgeKind::Feature) ue = e;
+  REQUIRE(ue != kNone);
+  drop.featureEdges.push_back({g.edgeVerts[ue][0], g.edgeVerts[ue][1]});
+  Segmentation t = segment(g, drop);
+  CHECK(t.droppedFeatureEdges == 48);
+  CHECK(t.sharpEdgeCount == 1);  // the user's
+  CHECK(t.edgeKind[ue] == EdgeKind::Feature);
+  checkPatchesAreDisks(g, t);
+}
