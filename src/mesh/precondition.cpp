@@ -25,7 +25,8 @@ double len(const P3& a) { return std::sqrt(dot(a, a)); }
 
 class Editor {
  public:
-  Editor(const MeshBuffers& m, const std::vector<std::array<uint32_t, 2>>& prot) : P_(m.positions) {
+  Editor(const MeshBuffers& m, const std::vector<std::array<uint32_t, 2>>& prot, const std::vector<uint8_t>& mask)
+      : P_(m.positions) {
     const size_t nf = m.triangleCount();
     T_.resize(nf);
     for (size_t f = 0; f < nf; ++f) {
@@ -34,6 +35,8 @@ class Editor {
     }
     origin_.resize(nf);
     for (uint32_t f = 0; f < nf; ++f) origin_[f] = f;
+    mask_.assign(nf, 1);
+    if (mask.size() == nf) mask_ = mask;
     parents_.resize(m.vertexCount());
     for (uint32_t v = 0; v < parents_.size(); ++v) parents_[v] = {v, v};
     for (const auto& e : prot)
@@ -51,7 +54,7 @@ class Editor {
       (void)fs;
       uint32_t a = uint32_t(k >> 32), b = uint32_t(k & 0xffffffffu);
       double l = edgeLength(a, b);
-      if (l > maxLen) q.push({l, a, b});
+      if (l > maxLen && editable(k)) q.push({l, a, b});
     }
     size_t added = 0;
     while (!q.empty()) {
@@ -67,7 +70,7 @@ class Editor {
       ++out.splits;
       for (uint32_t x : lastNeighbours_) {
         double lx = edgeLength(m, x);
-        if (lx > maxLen) q.push({lx, m, x});
+        if (lx > maxLen && editable(edgeKey(m, x))) q.push({lx, m, x});
       }
     }
   }
@@ -146,6 +149,7 @@ class Editor {
       addFace(f);
       T_.push_back({m, y, z});
       origin_.push_back(origin_[f]);
+      mask_.push_back(mask_[f]);
       addFace(uint32_t(T_.size() - 1));
       lastNeighbours_.push_back(z);
     }
@@ -157,7 +161,7 @@ class Editor {
   bool flippable(uint64_t k, double tol, uint32_t& a, uint32_t& b, uint32_t& c, uint32_t& d,
                  std::array<uint32_t, 2>& fs) const {
     auto it = ef_.find(k);
-    if (it == ef_.end() || it->second[1] == kNo || prot_.count(k)) return false;
+    if (it == ef_.end() || it->second[1] == kNo || prot_.count(k) || !editable(k)) return false;
     fs = it->second;
     const uint32_t u = uint32_t(k >> 32), v = uint32_t(k & 0xffffffffu);
     int i = 0;
@@ -190,6 +194,15 @@ class Editor {
   std::unordered_set<uint64_t> prot_;
   std::vector<std::array<uint32_t, 2>> parents_;
   std::vector<uint32_t> origin_;  // per triangle: the input triangle it lies in
+  std::vector<uint8_t> mask_;     // per triangle: may be changed
+
+  bool editable(uint64_t k) const {
+    auto it = ef_.find(k);
+    if (it == ef_.end()) return false;
+    for (uint32_t f : it->second)
+      if (f != kNo && mask_[f]) return true;
+    return false;
+  }
   std::vector<uint32_t> lastNeighbours_;  // the vertices joined to the latest split vertex
 };
 
@@ -198,7 +211,7 @@ class Editor {
 Preconditioned precondition(const MeshBuffers& input, const std::vector<std::array<uint32_t, 2>>& protectedEdges,
                             const PreconditionOptions& options) {
   Preconditioned out;
-  Editor ed(input, protectedEdges);
+  Editor ed(input, protectedEdges, options.faceMask);
   // split, flip, and once more: the flips make shorter diagonals, the second split pass only
   // finds the long edges flipping could not remove
   for (int pass = 0; pass < 2; ++pass) {

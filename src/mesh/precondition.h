@@ -27,6 +27,10 @@ struct PreconditionOptions {
   //! Two triangles are coplanar when 1 − n0·n1 is below this (unit normals): 1e-12 is an angle
   //! of about 1.4e-6 rad.
   double coplanarTolerance = 1e-12;
+  //! Per input triangle: 1 where the mesh may be changed (empty: everywhere). An edge is split
+  //! or flipped only when a triangle on it is marked; triangles made from a marked one are
+  //! marked.
+  std::vector<uint8_t> faceMask;
   //! Hard cap on the vertices the splits may add; when reached, splitting stops (reported in
   //! Preconditioned::capped).
   size_t maxNewVertices = 1000000;

@@ -742,8 +742,24 @@ RemeshResult Pipeline::run(const MeshBuffers& input) {
   if (target > 0) checkOutputEstimate(estimateFromTarget(area, target, in.triangleCount()), opt_);
   fo.junctionScale = target;
   fo.minFeatureLength = opt_.minFeatureLength >= 0 ? opt_.minFeatureLength : kMinFeatureFactor * target;
-  {  // input edges no longer than twice the target, flat pairs Delaunay (mesh/precondition.h)
+  {  // input edges no longer than twice the target, flat pairs Delaunay (mesh/precondition.h),
+     // in the patches that need cuts (only there do curves follow input edges that are not
+     // features): a first segmentation of the input finds them
     PreconditionOptions po;
+    {
+      const F::EdgeGraph g0 = F::buildEdgeGraph(in);
+      F::FeatureOptions f0 = fo;
+      f0.featureEdges = userFeatures;
+      f0.junctionScale = 0;
+      const F::Segmentation s0 = F::segment(g0, f0, progress_);
+      std::vector<uint8_t> cutPatch(s0.patches.size(), 0);
+      for (uint32_t e = 0; e < g0.edgeCount(); ++e)
+        if (s0.edgeKind[e] == F::EdgeKind::Cut)
+          for (uint32_t f : g0.edgeFaces[e])
+            if (f != F::kNone) cutPatch[s0.facePatch[f]] = 1;
+      po.faceMask.resize(in.triangleCount());
+      for (uint32_t f = 0; f < in.triangleCount(); ++f) po.faceMask[f] = cutPatch[s0.facePatch[f]];
+    }
     po.maxNewVertices = std::max<size_t>(200000, 2 * in.vertexCount());
     // a tiny target on a big surface must not split without end: no more new vertices than
     // the budget (the output limits are checked once the sizing is known)
