@@ -114,6 +114,8 @@ class Pipeline {
   MeshBuffers stitch(std::vector<uint32_t>& trianglePatch) const;
   std::vector<RemeshPatch> patchSnapshot(const MeshBuffers& out) const;
   std::vector<double> cornerWedgeAngles(const F::PatchMesh& pm) const;
+  void indexExemptWedges(const std::vector<uint8_t>& exemptVertex);
+  uint32_t exemptCornerOf(const MeshBuffers& out, size_t t, const std::vector<uint8_t>& exemptVertex) const;
 
   const RemeshOptions& opt_;
   const ProgressFn& progress_;
@@ -126,6 +128,10 @@ class Pipeline {
   std::vector<std::vector<uint32_t>> edgeSamples_;  // interior samples per input edge
   std::vector<uint32_t> vertexSample_;              // sample at an input vertex
   std::vector<uint32_t> edgeIndexInCurve_;
+  // per curve sample: (exempt corner sample, curve) for each curve through it that ends at an
+  // exempt corner
+  std::vector<std::vector<std::pair<uint32_t, uint32_t>>> wedgeCurves_;
+  std::unordered_map<uint32_t, double> exemptWedgeDeg_;  // exempt corner sample -> its wedge angle
   uint64_t stamp_ = 0;
   size_t scaleSplits_ = 0;
   double liftSeconds_ = 0;
@@ -146,6 +152,45 @@ std::vector<double> Pipeline::cornerWedgeAngles(const F::PatchMesh& pm) const {
       a[v[0]] += F::angleBetween(p1 - p0, p2 - p0);
     }
   return a;
+}
+
+void Pipeline::indexExemptWedges(const std::vector<uint8_t>& exemptVertex) {
+  wedgeCurves_.assign(cm_.samples.size(), {});
+  for (uint32_t c = 0; c < seg_.curves.size(); ++c) {
+    const auto& ids = cm_.curveSamples[c];
+    for (uint32_t corner : {ids.front(), ids.back()}) {
+      if (corner >= exemptVertex.size() || !exemptVertex[corner]) continue;
+      for (uint32_t s : ids)
+        if (s != corner) wedgeCurves_[s].push_back({corner, c});
+      if (ids.front() == ids.back()) break;  // a closed curve: once
+    }
+  }
+}
+
+// The exempt corner triangle t belongs to, or kNone: it touches the corner, or one of its edges
+// spans the corner's small wedge: its ends lie on two different curves that meet at the corner,
+// at distances from it within a factor 2 of each other, and it is seen from the corner under an
+// angle between half the corner's wedge angle and the bound. Ruppert's concentric shells leave
+// such skinny triangles there, whose angle the input forces (the "seditious edges" of Shewchuk
+// 2002). Where the two curves stop diverging (a long strip between them), an edge across is
+// seen under less and less: not exempt.
+uint32_t Pipeline::exemptCornerOf(const MeshBuffers& out, size_t t, const std::vector<uint8_t>& exemptVertex) const {
+  const uint32_t* tv = &out.triangles[3 * t];
+  for (int c = 0; c < 3; ++c)
+    if (exemptVertex[tv[c]]) return tv[c];
+  auto pos = [&](uint32_t v) { return F::Vec3{out.positions[3 * v], out.positions[3 * v + 1], out.positions[3 * v + 2]}; };
+  for (int c = 0; c < 3; ++c) {
+    const uint32_t a = tv[c], b = tv[(c + 1) % 3];
+    if (a >= wedgeCurves_.size() || b >= wedgeCurves_.size()) continue;
+    for (const auto& [ca, cua] : wedgeCurves_[a])
+      for (const auto& [cb, cub] : wedgeCurves_[b]) {
+        if (ca != cb || cua == cub) continue;
+        const F::Vec3 p = pos(ca), da = pos(a) - p, db = pos(b) - p;
+        const double la = F::norm(da), lb = F::norm(db), seen = F::angleBetween(da, db) * 180.0 / kPi;
+        if (la <= 2 * lb && lb <= 2 * la && seen < opt_.minAngleDeg && seen >= 0.5 * exemptWedgeDeg_.at(ca)) return ca;
+      }
+  }
+  return kNone;
 }
 
 // Corners for the corner-preserving boundary condition (the fallback when the free boundary
@@ -857,16 +902,15 @@ RemeshResult Pipeline::run(const MeshBuffers& input) {
         uint32_t s = iv < cm_.cornerSample.size() ? cm_.cornerSample[iv] : kNone;
         if (s == kNone || s >= exemptVertex.size() || exemptVertex[s]) continue;
         exemptVertex[s] = 1;
+        exemptWedgeDeg_[s] = wedge[iv] * 180.0 / kPi;
         rep_.exemptCorners.push_back({vm.vertexToInput[iv], s, wedge[iv] * 180.0 / kPi, {}});
       }
     }
     exemptVertex.resize(out.vertexCount(), 0);
+    indexExemptWedges(exemptVertex);
     size_t bad = 0;
-    for (size_t t = 0; t < out.triangleCount(); ++t) {
-      const uint32_t* tv = &out.triangles[3 * t];
-      if (!exemptVertex[tv[0]] && !exemptVertex[tv[1]] && !exemptVertex[tv[2]] && triangleMinAngle(out, t) < opt_.minAngleDeg)
-        ++bad;
-    }
+    for (size_t t = 0; t < out.triangleCount(); ++t)
+      if (triangleMinAngle(out, t) < opt_.minAngleDeg && exemptCornerOf(out, t, exemptVertex) == kNone) ++bad;
     if (bad < bestBad) {
       bestBad = bad;
       bestOut = out;
@@ -884,9 +928,7 @@ RemeshResult Pipeline::run(const MeshBuffers& input) {
     std::vector<size_t> firstTri(work_.size(), 0);
     for (size_t i = triPatch.size(); i-- > 0;) firstTri[triPatch[i]] = i;
     for (size_t t = 0; t < out.triangleCount(); ++t) {
-      if (triangleMinAngle(out, t) >= opt_.minAngleDeg) continue;
-      const uint32_t* tv = &out.triangles[3 * t];
-      if (exemptVertex[tv[0]] || exemptVertex[tv[1]] || exemptVertex[tv[2]]) continue;
+      if (triangleMinAngle(out, t) >= opt_.minAngleDeg || exemptCornerOf(out, t, exemptVertex) != kNone) continue;
       PatchWork& w = *work_[triPatch[t]];
       const uint32_t* lt = &w.triangles[3 * (t - firstTri[triPatch[t]])];
       double cx = 0, cy = 0, longest = 0;
@@ -929,15 +971,24 @@ RemeshResult Pipeline::run(const MeshBuffers& input) {
     rep_.pctMinAtLeast50 = 100.0 * double(at50) / double(as.triangles);
   }
   rep_.minAngleOutsideExempt = 180;
+  indexExemptWedges(exemptVertex);
+  std::unordered_map<uint32_t, size_t> cornerIndex;
+  for (size_t i = 0; i < rep_.exemptCorners.size(); ++i) cornerIndex[rep_.exemptCorners[i].outputVertex] = i;
   for (size_t t = 0; t < out.triangleCount(); ++t) {
     const uint32_t* tv = &out.triangles[3 * t];
     bool ex = false;
     for (int c = 0; c < 3; ++c)
       if (exemptVertex[tv[c]]) {
         ex = true;
-        for (auto& ec : rep_.exemptCorners)
-          if (ec.outputVertex == tv[c]) ec.triangles.push_back(uint32_t(t));
+        rep_.exemptCorners[cornerIndex.at(tv[c])].triangles.push_back(uint32_t(t));
       }
+    if (!ex) {
+      const uint32_t corner = exemptCornerOf(out, t, exemptVertex);
+      if (corner != kNone) {
+        ex = true;
+        rep_.exemptCorners[cornerIndex.at(corner)].triangles.push_back(uint32_t(t));
+      }
+    }
     if (ex) continue;
     double a = triangleMinAngle(out, t);
     rep_.minAngleOutsideExempt = std::min(rep_.minAngleOutsideExempt, a);

@@ -20,7 +20,7 @@ namespace conformesh {
 
 struct RemeshOptions {
   //! Angle bound (degrees) for every output triangle, measured in 3D, except at exempt corners
-  //! (input corners whose own angle is below it). Range [0, 34].
+  //! (input corners whose own angle is below it; see ExemptCorner). Range [0, 34].
   double minAngleDeg = 30.0;
   //! Target edge length: the mean output edge length in flat regions. Absolute when > 0, else
   //! targetEdgeLengthRel times the bounding-box diagonal.
@@ -82,8 +82,11 @@ struct RemeshOptions {
   double maxMemoryBytes = 3.0 * double(size_t(1) << 30);
 };
 
-//! An input corner whose angle (3D, inside one patch) is below the bound: triangles touching it
-//! cannot all meet the bound and are listed.
+//! An input corner where the input's own feature or boundary curves make a wedge below the bound
+//! (features::featureWedgeAngles). Its triangles are listed and exempt from the bound: those
+//! touching it, and those with an edge across its small wedge (both ends on two different curves
+//! meeting at the corner, seen from it under less than the bound: the skinny triangles Ruppert's
+//! concentric shells leave there, forced by the input; Shewchuk 2002).
 struct ExemptCorner {
   uint32_t inputVertex = 0;
   uint32_t outputVertex = 0;
