@@ -266,6 +266,7 @@ uint32_t improveCutJunctions(const EdgeGraph& g, Segmentation& seg, double scale
   const double kAim = 60.0 * kPi / 180.0;   // ends meeting another curve below this are rerouted
   const double kGain = 5.0 * kPi / 180.0;   // a reroute must improve the angle by this much
   const int kPasses = 8;                     // one reroute per patch and pass
+  const size_t kTries = 6;                   // landings tried per cut end
   const std::vector<EdgeKind> original = seg.edgeKind;
   std::vector<uint32_t> valence(g.vertexCount, 0);
   std::vector<double> dist(g.vertexCount, INFINITY);
@@ -364,10 +365,9 @@ uint32_t improveCutJunctions(const EdgeGraph& g, Segmentation& seg, double scale
             }
           }
         }
-        // the landing that makes the largest angle with its curve (the nearer one on ties)
+        // the landings ranked (below); the first whose cut leaves two disks wins
         const auto inAB = [&](uint32_t q) { return q == A || q == B; };
-        double bestAngle = old + kGain;
-        uint32_t hit = kNone;
+        std::vector<std::pair<double, uint32_t>> ranked;
         for (uint32_t x : landings) {
           std::vector<uint32_t> cutPath;
           for (uint32_t y = x; y != u; y = g.otherVertex(predEdge[y], y)) cutPath.push_back(y);
@@ -388,35 +388,40 @@ uint32_t improveCutJunctions(const EdgeGraph& g, Segmentation& seg, double scale
           double now = kPi;
           for (const auto* side : {&fwd, &back})
             if (side->size() > 1) now = std::min(now, angleBetween(dn, pointAlong(g, *side, l) - g.positions[x]));
-          if (now > bestAngle + 1e-9) bestAngle = now, hit = x;
+          if (now > old + kGain) ranked.push_back({now, x});
         }
+        // landings were found nearest first: those at kAim or more keep that order (the nearest
+        // good one first), the others follow by angle, largest first
+        std::stable_sort(ranked.begin(), ranked.end(), [&](const auto& p, const auto& q) {
+          const bool gp = p.first >= kAim, gq = q.first >= kAim;
+          if (gp != gq) return gp;
+          return !gp && p.first > q.first;
+        });
+        bool commit = false;
         std::vector<uint32_t> newPath;  // from the landing point to u
-        if (hit != kNone) {
-          for (uint32_t x = hit; x != u; x = g.otherVertex(predEdge[x], x)) newPath.push_back(x);
+        for (size_t r = 0; r < ranked.size() && r < kTries && !commit; ++r) {
+          newPath.clear();
+          for (uint32_t x = ranked[r].second; x != u; x = g.otherVertex(predEdge[x], x)) newPath.push_back(x);
           newPath.push_back(u);
-        }
-        bool commit = hit != kNone;
-        for (uint32_t x : seen) dist[x] = INFINITY, predEdge[x] = kNone;
-        seen.clear();
-        for (size_t i = k + 1; i < path.size(); ++i) forbidden[path[i]] = 0;
-        if (commit) {
           for (size_t i = 0; i + 1 < newPath.size(); ++i) {
-            uint32_t e = g.findEdge(newPath[i], newPath[i + 1]);
-            seg.edgeKind[e] = EdgeKind::Cut;
+            seg.edgeKind[g.findEdge(newPath[i], newPath[i + 1])] = EdgeKind::Cut;
             ++valence[newPath[i]], ++valence[newPath[i + 1]];
           }
-          if (splitsIntoTwoDisks(g, seg, seg.patches[A], seg.patches[B])) {
-            for (uint32_t x : path) changed[x] = 1;
-            for (uint32_t x : newPath) changed[x] = 1;
-            usedPatch[A] = usedPatch[B] = 1;
-            ++moved;
-          } else {  // A and B share another curve: the new cut does not give two disks
+          commit = splitsIntoTwoDisks(g, seg, seg.patches[A], seg.patches[B]);
+          if (!commit)  // A and B share another curve that this cut leaves on one side
             for (size_t i = 0; i + 1 < newPath.size(); ++i) {
               seg.edgeKind[g.findEdge(newPath[i], newPath[i + 1])] = EdgeKind::None;
               --valence[newPath[i]], --valence[newPath[i + 1]];
             }
-            commit = false;
-          }
+        }
+        for (uint32_t x : seen) dist[x] = INFINITY, predEdge[x] = kNone;
+        seen.clear();
+        for (size_t i = k + 1; i < path.size(); ++i) forbidden[path[i]] = 0;
+        if (commit) {
+          for (uint32_t x : path) changed[x] = 1;
+          for (uint32_t x : newPath) changed[x] = 1;
+          usedPatch[A] = usedPatch[B] = 1;
+          ++moved;
         }
         if (!commit) {
           for (size_t i = 0; i < k; ++i) {

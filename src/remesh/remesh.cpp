@@ -211,7 +211,13 @@ std::vector<std::pair<uint32_t, double>> Pipeline::boundaryCorners(const F::Patc
 }
 
 void Pipeline::flattenPatches() {
-  std::map<std::pair<uint32_t, size_t>, std::unique_ptr<PatchWork>> cache;
+  // flattened patches by their exact face set: splitting a patch can reroute the cuts of its
+  // neighbours (improveCutJunctions), which changes their faces and so their flattening
+  std::map<std::vector<uint32_t>, std::unique_ptr<PatchWork>> cache;
+  auto keyOf = [](std::vector<uint32_t> faces) {
+    std::sort(faces.begin(), faces.end());
+    return faces;
+  };
   for (int round = 0;; ++round) {
     if (round > 64 + int(g_.faceCount))
       fail(Code::IterationLimit, Stage::Flatten, "splitting patches for their scale factor did not settle");
@@ -219,7 +225,7 @@ void Pipeline::flattenPatches() {
     bool split = false;
     for (uint32_t p = 0; p < seg_.patches.size() && !split; ++p) {
       const auto& faces = seg_.patches[p];
-      auto key = std::make_pair(*std::min_element(faces.begin(), faces.end()), faces.size());
+      auto key = keyOf(faces);
       if (cache.count(key)) continue;
       auto w = std::make_unique<PatchWork>();
       w->pm = F::extractPatch(g_, mask, faces);
@@ -306,10 +312,7 @@ void Pipeline::flattenPatches() {
     }
     if (split) continue;
     work_.clear();
-    for (const auto& faces : seg_.patches) {
-      auto key = std::make_pair(*std::min_element(faces.begin(), faces.end()), faces.size());
-      work_.push_back(std::move(cache.at(key)));
-    }
+    for (const auto& faces : seg_.patches) work_.push_back(std::move(cache.at(keyOf(faces))));
     return;
   }
 }
@@ -434,6 +437,7 @@ uint32_t Pipeline::addSplitSample(const PatchWork& w, const std::vector<Boundary
   if (smp.vertex != kNone) vertexSample_[smp.vertex] = id;
   else edgeSamples_[e].push_back(id);
   uint32_t c = seg_.edgeCurve[e];
+  if (c == kNone) fail(Code::InternalError, Stage::Refine, "a patch boundary edge is on no curve");
   auto& ids = cm_.curveSamples[c];
   double key = curveKey(c, id);
   size_t pos = 1;
