@@ -178,9 +178,10 @@ function oursFlatten(input, outFile, boundary) {
   if (cliFor('flatten')) return [cliFor('flatten'), ['flatten', input, '-o', outFile, '--boundary', boundary, '--json']];
   return null;
 }
-/** Our remesh: JSON keys used: seconds, triangles, stage seconds when reported. */
+/** Our remesh: JSON keys used: seconds, triangles, stage seconds when reported. Without the
+ *  report's own Hausdorff distance (the peers compute none; quality_tool measures every output). */
 function oursRemesh(input, rel, outFile) {
-  if (cliFor('remesh')) return [cliFor('remesh'), ['remesh', input, '-o', outFile, '--edge-length-rel', String(rel), '--json']];
+  if (cliFor('remesh')) return [cliFor('remesh'), ['remesh', input, '-o', outFile, '--edge-length-rel', String(rel), '--no-hausdorff', '--json']];
   return null;
 }
 const seconds = (rr) => (rr && rr.ok ? (rr.med('seconds') ?? rr.wall) : null);
