@@ -98,7 +98,7 @@ class Refiner {
     }
     double diag = std::hypot(x1 - x0, y1 - y0);
     reserveForSize();
-    minSeg2_ = (diag * 1e-11) * (diag * 1e-11);
+    minSeg2_ = std::max(diag * 1e-11, o_.minSegmentLength) * std::max(diag * 1e-11, o_.minSegmentLength);
     invDiag2_ = 1.0 / (diag * diag);
   }
 
@@ -558,6 +558,8 @@ RefineResult refinePslg(const Pslg& pslg, const RefineOptions& options) {
     fail(Code::InvalidArgument, Stage::Refine, "maxArea and maxEdge must be finite and >= 0");
   if (!(options.offcenterFactor > 0 && options.offcenterFactor <= 0.99))
     fail(Code::InvalidArgument, Stage::Refine, "offcenterFactor must be in (0, 0.99]");
+  if (!(options.minSegmentLength >= 0) || !std::isfinite(options.minSegmentLength))
+    fail(Code::InvalidArgument, Stage::Refine, "minSegmentLength must be finite and >= 0");
   if (!options.vertexSizing.empty() && options.vertexSizing.size() != pslg.points.size() / 2)
     fail(Code::InvalidArgument, Stage::Refine, "vertexSizing needs one value per input point");
   CdtState s;

@@ -47,6 +47,9 @@ struct RefineOptions {
   //! as it is (it counts in minAngleDeg, not as exempt). For meshing several domains that
   //! share their boundary points when one of them may no longer add points there.
   bool splitSegments = true;
+  //! Subsegments shorter than this are never split (absolute; 0: 1e-11 times the bounding-box
+  //! diagonal, the default floor). A bad triangle that would need such a split stays.
+  double minSegmentLength = 0.0;
   //! Hard cap on Steiner vertices; hitting it stops with status IterationLimit (mesh kept).
   size_t maxInsertions = 100000000;
   //! Domain options of the CDT (convex hull, holes by orientation).

@@ -32,10 +32,15 @@ using F::kNone;
 constexpr double kPi = 3.14159265358979323846;
 // Rounds of re-refining patches whose boundary got samples from a neighbour's segment splits.
 constexpr int kConformingRounds = 8;
-// Patches with fewer input faces are not split further.
-constexpr size_t kMinSplitFaces = 16;
+// Patches with fewer input faces are not split further. A single triangle always develops
+// isometrically, so splitting down to small patches beats the round-disk fallback, whose
+// distortion on a small curved patch left thousands of triangles below the bound
+// (mech-holes-shark at 0.0102 · diagonal: a 15-face patch; 2,783 below the bound, 8 after).
+constexpr size_t kMinSplitFaces = 2;
 // Degrees added to the angle bound for the planar refinement (see meshPatch).
 constexpr double kPlanarAngleMargin = 2.0;
+// Shortest boundary piece a patch refinement may split, in target edge lengths (on the surface).
+constexpr double kMinSegmentFactor = 1e-6;
 // Default minFeatureLength in target edge lengths: a chain of sharp edges shorter than two
 // output edges gets at most one sample inside, too few to carry a feature; on scans such chains
 // are bumps of the noise, and each one needs cuts to join the rest (measured on
@@ -254,7 +259,7 @@ void Pipeline::flattenPatches() {
                                     (bc == BoundaryCondition::Free      ? "free"
                                      : bc == BoundaryCondition::Corners ? "corner-preserving"
                                                                         : "round (circle)") +
-                                    " boundary condition after: " + lastError);
+                                    " boundary condition after: " + lastError + " [patch of " + std::to_string(faces.size()) + " faces]");
           break;
         } catch (const Error& e) {
           if (e.code() == Code::Cancelled) throw;
@@ -420,17 +425,32 @@ uint32_t Pipeline::addSplitSample(const PatchWork& w, const std::vector<Boundary
   F::CurveSample smp;
   smp.edge = e;
   smp.t = g_.edgeVerts[e][0] == A ? th : 1.0 - th;
+  // A split must add a point strictly inside this stretch, never one of its ends: where it
+  // falls on an end (a stretch between two samples closer than the dedupe resolution, as two
+  // input corners a rounding error apart give), it goes to the middle of its piece instead.
+  const bool onEnd = smp.t <= 0.0 || smp.t >= 1.0;
+  const uint32_t endSample = onEnd ? vertexSample_[smp.t <= 0.0 ? g_.edgeVerts[e][0] : g_.edgeVerts[e][1]] : kNone;
+  if (onEnd && (endSample == p0.sample || endSample == p1.sample) && pieces[i].t1 > pieces[i].t0) {
+    th = 0.5 * (pieces[i].t0 + pieces[i].t1);
+    smp.t = g_.edgeVerts[e][0] == A ? th : 1.0 - th;
+  }
   if (smp.t <= 0.0 || smp.t >= 1.0) {
     uint32_t v = smp.t <= 0.0 ? g_.edgeVerts[e][0] : g_.edgeVerts[e][1];
-    if (vertexSample_[v] != kNone) return vertexSample_[v];
+    if (vertexSample_[v] != kNone) {
+      if (vertexSample_[v] == p0.sample || vertexSample_[v] == p1.sample)
+        fail(Code::InternalError, Stage::Refine, "a boundary stretch has no length to split");
+      return vertexSample_[v];
+    }
     smp.t = smp.t <= 0.0 ? 0.0 : 1.0;
     smp.vertex = v;
   }
   // a seam (a cut with the patch on both sides) is split at the same place from both sides:
-  // one sample for both
+  // one sample for both (but never an end of this stretch)
   if (smp.vertex == kNone)
     for (uint32_t o : edgeSamples_[e])
-      if (std::abs(cm_.samples[o].t - smp.t) < 1e-9) return o;
+      if (std::abs(cm_.samples[o].t - smp.t) * g_.edgeLength(e) < 1e-3 * kMinSegmentFactor * sizing_.target &&
+          o != p0.sample && o != p1.sample)
+        return o;
   smp.position = g_.positions[g_.edgeVerts[e][0]] * (1.0 - smp.t) + g_.positions[g_.edgeVerts[e][1]] * smp.t;
   uint32_t id = uint32_t(cm_.samples.size());
   cm_.samples.push_back(smp);
@@ -569,6 +589,12 @@ void Pipeline::meshPatch(uint32_t p, bool splitSegments) {
   ro.diametralLens = true;
   ro.splitSegments = splitSegments;
   ro.minAngleDeg = std::min(opt_.minAngleDeg + kPlanarAngleMargin, 34.0);
+  // Boundary pieces shorter than this are not split: far below any size the output can mean,
+  // and above the resolution at which two splits of one input edge are told apart (the sample
+  // dedupe in addSplitSample); refinements that keep splitting each other's segments stop here.
+  // With the largest planar/3D scale of the patch it is at least kMinSegmentFactor · target on
+  // the surface everywhere in the patch.
+  ro.minSegmentLength = kMinSegmentFactor * sizing_.target * *std::max_element(w.scaleSub.begin(), w.scaleSub.end());
   // Longest-edge bound of the refinement vs the mean edge length it gives: calibrated so the
   // mean output edge length in flat regions is the target.
   const double kSizeFactor = 1.3;
