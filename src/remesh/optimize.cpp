@@ -88,7 +88,7 @@ bool tryMove(Mesh& m, uint32_t v, double x, double y, const LiftFn& lift, double
     if (!(orient2d(c[0], c[1], c[2]) > 1e-6 * l2)) return false;
   }
   Vec3 P;
-  if (!lift(x, y, P)) return false;
+  if (!lift(v, x, y, P)) return false;
   const Vec3 keep = m.pos[v];
   m.pos[v] = P;
   double newMin = 180, newSum = 0;

@@ -99,7 +99,7 @@ class Pipeline {
   std::vector<BoundaryPoint> boundaryPoints(const PatchWork& w) const;
   void meshPatch(uint32_t p, bool splitSegments = true);
   void optimizeMesh(uint32_t p);
-  bool liftPoint(const PatchWork& w, double x, double y, PullbackPoint& q) const;
+  bool liftPoint(const PatchWork& w, double x, double y, PullbackPoint& q, int hintFace = -1) const;
   std::vector<Piece> stretch(const PatchWork& w, const BoundaryPoint& p0, const BoundaryPoint& p1, size_t points) const;
   uint32_t addSplitSample(const PatchWork& w, const std::vector<BoundaryPoint>& bp, uint32_t s, double t);
   double curveKey(uint32_t c, uint32_t sample) const;
@@ -415,9 +415,10 @@ bool degenerateBoundary(const std::vector<BoundaryPoint>& bp) {
 // flattened boundary (between curve samples), so a refinement vertex near a concave stretch of
 // boundary can lie just outside the flattened patch: it is lifted from the nearest point of the
 // flattened boundary polyline instead (on the input's boundary curve, within the chord's sagitta).
-bool Pipeline::liftPoint(const PatchWork& w, double x, double y, PullbackPoint& q) const {
+// hintFace: a face of the final layout near (x, y) to start the point location from (-1: none).
+bool Pipeline::liftPoint(const PatchWork& w, double x, double y, PullbackPoint& q, int hintFace) const {
   const Pullback& pb = w.flat.pullback;
-  if (pb.locate(x, y, q, 1e-9)) return true;
+  if (pb.locate(x, y, hintFace, q, 1e-9)) return true;
   const auto& loop = w.pm.boundaryLoops[0];
   const auto& uv = w.flat.uv;
   double best = INFINITY, bx = x, by = y;
@@ -553,9 +554,12 @@ void Pipeline::optimizeMesh(uint32_t p) {
   oo.minAngleDeg = opt_.minAngleDeg;
   oo.maxIterations = opt_.optimizeIterations;
   oo.tolerance = opt_.optimizeTolerance;
-  auto lift = [&](double x, double y, F::Vec3& out) {
+  // per vertex: the layout face its latest lift landed in, where the next one starts looking
+  std::vector<int> hint(nv, -1);
+  auto lift = [&](uint32_t v, double x, double y, F::Vec3& out) {
     PullbackPoint q;
-    if (!liftPoint(w, x, y, q)) return false;
+    if (!liftPoint(w, x, y, q, hint[v])) return false;
+    hint[v] = q.layoutFace;
     out = {q.position[0], q.position[1], q.position[2]};
     return true;
   };

@@ -70,7 +70,7 @@ void checkOptimize(const std::function<Vec3(double, double)>& surface, const cha
   before /= double(g.tri.size() / 3);
   optimization::OptimizeOptions o;
   o.minAngleDeg = 20;
-  auto lift = [&](double x, double y, Vec3& out) {
+  auto lift = [&](uint32_t, double x, double y, Vec3& out) {
     if (x < 0 || y < 0 || x > 1 || y > 1) return false;
     out = surface(x, y);
     return true;
@@ -123,7 +123,7 @@ TEST_CASE("optimize: zero passes change nothing") {
   const auto tri0 = g.tri;
   optimization::OptimizeOptions o;
   o.maxIterations = 0;
-  auto st = optimization::optimizePatch(g.xy, g.tri, pos, g.fixed, [](double, double, Vec3&) { return false; }, o);
+  auto st = optimization::optimizePatch(g.xy, g.tri, pos, g.fixed, [](uint32_t, double, double, Vec3&) { return false; }, o);
   CHECK(st.moves == 0);
   CHECK(g.xy == xy0);
   CHECK(g.tri == tri0);
