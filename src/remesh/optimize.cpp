@@ -16,6 +16,39 @@ constexpr uint32_t kNoTri = 0xffffffffu;
 
 using planar::orient2d;
 
+// The smallest angle of a 3D triangle is at the corner opposite its shortest edge: the length
+// of the cross product and the dot product of the two edges there (angle = atan2(cr, dt)).
+struct Corner {
+  double cr, dt;
+};
+
+Corner smallestCorner(const Vec3& a, const Vec3& b, const Vec3& c) {
+  const Vec3 ab = b - a, bc = c - b, ca = a - c;
+  const double lab = features::dot(ab, ab), lbc = features::dot(bc, bc), lca = features::dot(ca, ca);
+  Vec3 u, w;
+  if (lab <= lbc && lab <= lca) u = a - c, w = b - c;  // at c
+  else if (lbc <= lca) u = b - a, w = c - a;           // at a
+  else u = c - b, w = a - b;                           // at b
+  return {features::norm(features::cross(u, w)), features::dot(u, w)};
+}
+
+double cornerDeg(const Corner& k) { return ((k.cr == 0 && k.dt == 0) ? 0.0 : std::atan2(k.cr, k.dt)) * kRadToDeg; }
+
+// cornerDeg without atan2, to within kApproxErrDeg (NaN for a degenerate corner). atan(z) on
+// [0, 1] by the polynomial of Abramowitz–Stegun 4.4.49 (Hastings 1955), |error| <= 2e-8 rad
+// (1.2e-6 degrees); the bound used has a margin of ~80 over it.
+constexpr double kApproxErrDeg = 1e-4;
+double cornerDegApprox(const Corner& k) {
+  constexpr double kHalfPi = 1.57079632679489661923, kPi = 3.14159265358979323846;
+  const double c = k.cr, d = std::abs(k.dt);
+  const bool steep = c > d;
+  const double z = steep ? d / c : c / d, z2 = z * z;
+  const double p = 1 + z2 * (-0.3333314528 + z2 * (0.1999355085 + z2 * (-0.1420889944 + z2 * (0.1065626393 + z2 * (-0.0752896400 + z2 * (0.0429096138 + z2 * (-0.0161657367 + z2 * 0.0028662257)))))));
+  double r = steep ? kHalfPi - z * p : z * p;
+  if (k.dt < 0) r = kPi - r;
+  return r * kRadToDeg;
+}
+
 // Circumcenter of a planar triangle; false when it is degenerate.
 bool circumcenter(const double* a, const double* b, const double* c, double out[2]) {
   const double bx = b[0] - a[0], by = b[1] - a[1], cx = c[0] - a[0], cy = c[1] - a[1];
@@ -91,15 +124,37 @@ bool tryMove(Mesh& m, uint32_t v, double x, double y, const LiftFn& lift, double
   if (!lift(v, x, y, P)) return false;
   const Vec3 keep = m.pos[v];
   m.pos[v] = P;
+  const double floor = oldMin >= bound ? bound : oldMin;
+  // Most candidates are rejected: decide from the approximate angles where they are sure (each
+  // is within kApproxErrDeg of its exact value), and take atan2 only for the rest. The exact
+  // test below is the rule; this one only skips work where its answer is known.
+  constexpr size_t kBuf = 64;
+  Corner corner[kBuf];
+  if (n <= kBuf) {
+    double aMin = 180, aSum = 0;
+    for (size_t i = 0; i < n; ++i) {
+      const uint32_t* t = &m.tri[3 * size_t(s[i])];
+      corner[i] = smallestCorner(m.pos[t[0]], m.pos[t[1]], m.pos[t[2]]);
+      const double a = cornerDegApprox(corner[i]);
+      aMin = std::min(aMin, a);
+      aSum += a;
+    }
+    const double e = kApproxErrDeg;
+    const bool surelyRejected = aMin + e < floor ||
+                                (oldMin < bound ? aMin + e <= oldMin + 1e-9 : aSum + e * double(n) + 1e-9 <= oldSum + 1e-9 * n);
+    if (surelyRejected) {
+      m.pos[v] = keep;
+      return false;
+    }
+  }
   double newMin = 180, newSum = 0;
-  double fresh[64];
+  double fresh[kBuf];
   for (size_t i = 0; i < n; ++i) {
-    double a = m.triMin(s[i]);
-    if (i < 64) fresh[i] = a;
+    double a = i < kBuf ? cornerDeg(corner[i]) : m.triMin(s[i]);  // the same value as triMin
+    if (i < kBuf) fresh[i] = a;
     newMin = std::min(newMin, a);
     newSum += a;
   }
-  const double floor = oldMin >= bound ? bound : oldMin;
   const bool better = oldMin < bound ? newMin > oldMin + 1e-9 : newSum > oldSum + 1e-9 * n;
   if (newMin < floor || !better) {
     m.pos[v] = keep;
@@ -107,7 +162,7 @@ bool tryMove(Mesh& m, uint32_t v, double x, double y, const LiftFn& lift, double
   }
   m.xy[2 * size_t(v)] = x;
   m.xy[2 * size_t(v) + 1] = y;
-  for (size_t i = 0; i < n; ++i) m.minAngle[s[i]] = i < 64 ? fresh[i] : m.triMin(s[i]);
+  for (size_t i = 0; i < n; ++i) m.minAngle[s[i]] = i < kBuf ? fresh[i] : m.triMin(s[i]);
   old = {newMin, newSum};
   return true;
 }
@@ -186,7 +241,12 @@ size_t flipPass(Mesh& m, std::vector<uint8_t>& touched) {
     const double l2 = std::pow(m.p(c0)[0] - m.p(c1)[0], 2) + std::pow(m.p(c0)[1] - m.p(c1)[1], 2);
     if (!(orient2d(m.p(c0), m.p(x), m.p(c1)) > 1e-6 * l2) || !(orient2d(m.p(c1), m.p(y), m.p(c0)) > 1e-6 * l2)) continue;
     const double before = std::min(m.minAngle[t0], m.minAngle[t1]);
-    const double n0 = minAngleDeg3(m.pos[c0], m.pos[x], m.pos[c1]), n1 = minAngleDeg3(m.pos[c1], m.pos[y], m.pos[c0]);
+    // most edges do not flip: skip atan2 where the approximate angles are sure of that
+    const Corner k0 = smallestCorner(m.pos[c0], m.pos[x], m.pos[c1]);
+    if (cornerDegApprox(k0) + kApproxErrDeg <= before + 1e-6) continue;
+    const Corner k1 = smallestCorner(m.pos[c1], m.pos[y], m.pos[c0]);
+    if (cornerDegApprox(k1) + kApproxErrDeg <= before + 1e-6) continue;
+    const double n0 = cornerDeg(k0), n1 = cornerDeg(k1);
     if (!(std::min(n0, n1) > before + 1e-6)) continue;
     m.minAngle[t0] = n0;
     m.minAngle[t1] = n1;
@@ -218,16 +278,9 @@ double meanMin(const Mesh& m) {
 
 }  // namespace
 
-double minAngleDeg3(const Vec3& a, const Vec3& b, const Vec3& c) {
-  // the smallest angle is opposite the shortest edge: one atan2 instead of three
-  const Vec3 ab = b - a, bc = c - b, ca = a - c;
-  const double lab = features::dot(ab, ab), lbc = features::dot(bc, bc), lca = features::dot(ca, ca);
-  double angle;
-  if (lab <= lbc && lab <= lca) angle = features::angleBetween(a - c, b - c);       // at c
-  else if (lbc <= lca) angle = features::angleBetween(b - a, c - a);                // at a
-  else angle = features::angleBetween(c - b, a - b);                                // at b
-  return angle * kRadToDeg;
-}
+double minAngleDeg3(const Vec3& a, const Vec3& b, const Vec3& c) { return cornerDeg(smallestCorner(a, b, c)); }
+
+double minAngleDeg3Approx(const Vec3& a, const Vec3& b, const Vec3& c) { return cornerDegApprox(smallestCorner(a, b, c)); }
 
 OptimizeStats optimizePatch(std::vector<double>& xy, std::vector<uint32_t>& triangles, std::vector<Vec3>& pos,
                             const std::vector<uint8_t>& fixed, const LiftFn& lift, const OptimizeOptions& o) {

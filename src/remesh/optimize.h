@@ -44,4 +44,9 @@ OptimizeStats optimizePatch(std::vector<double>& xy, std::vector<uint32_t>& tria
 //! Smallest angle of the 3D triangle (a, b, c), in degrees.
 double minAngleDeg3(const features::Vec3& a, const features::Vec3& b, const features::Vec3& c);
 
+//! minAngleDeg3 without atan2, within 1e-4 degrees of it (a polynomial arctangent); NaN for a
+//! triangle whose smallest corner is degenerate. The optimizer uses it only to skip exact
+//! evaluations whose outcome it already knows.
+double minAngleDeg3Approx(const features::Vec3& a, const features::Vec3& b, const features::Vec3& c);
+
 }  // namespace conformesh::optimization
