@@ -204,26 +204,46 @@ bool neighbourCentroid(const Mesh& m, uint32_t v, double out[2]) {
 
 // One pass of flips: an interior edge flips when its quad is strictly convex in the plane and
 // the smaller 3D min angle of its two triangles gets larger. Returns the number of flips.
+// Pre: m's stars are current (built after the last change of m.tri).
 size_t flipPass(Mesh& m, std::vector<uint8_t>& touched) {
   auto key = [](uint32_t a, uint32_t b) { return (uint64_t(std::min(a, b)) << 32) | std::max(a, b); };
-  std::unordered_map<uint64_t, std::array<uint32_t, 2>> edgeTris;
-  edgeTris.reserve(m.tri.size());
-  const uint32_t nt = uint32_t(m.tri.size() / 3);
-  for (uint32_t t = 0; t < nt; ++t)
-    for (int c = 0; c < 3; ++c) {
-      auto& e = edgeTris.try_emplace(key(m.tri[3 * t + c], m.tri[3 * t + (c + 1) % 3]), std::array<uint32_t, 2>{kNoTri, kNoTri}).first->second;
-      (e[0] == kNoTri ? e[0] : e[1]) = t;
+  const uint32_t nt = uint32_t(m.tri.size() / 3), nv = uint32_t(m.xy.size() / 2);
+  // The triangles of an edge, first the one of smaller index, are found in the (pass-start)
+  // star of its smaller vertex; flips change those of four edges each, which are kept in
+  // `changed` from then on (an edge flipped away keeps an entry with no triangles).
+  std::unordered_map<uint64_t, std::array<uint32_t, 2>> changed;
+  auto edgeAt = [&](uint64_t k) {
+    if (const auto it = changed.find(k); it != changed.end()) return it->second;
+    std::array<uint32_t, 2> e{kNoTri, kNoTri};
+    const uint32_t a = uint32_t(k >> 32), b = uint32_t(k & 0xffffffffu);
+    for (uint32_t i = m.starStart[a]; i < m.starStart[a + 1]; ++i) {
+      const uint32_t t = m.starTri[i], *v = &m.tri[3 * size_t(t)];
+      if ((v[0] == a || v[1] == a || v[2] == a) && (v[0] == b || v[1] == b || v[2] == b)) (e[0] == kNoTri ? e[0] : e[1]) = t;
     }
+    return e;
+  };
+  // The interior edges in increasing key order (deterministic), from the stars: (a, b), a < b,
+  // is interior when b is in two triangles of a's star.
   std::vector<uint64_t> edges;
-  edges.reserve(edgeTris.size());
-  for (const auto& [k, e] : edgeTris)
-    if (e[1] != kNoTri) edges.push_back(k);
-  std::sort(edges.begin(), edges.end());  // deterministic order
+  edges.reserve(3 * size_t(nt) / 2 + 1);
+  std::vector<uint32_t> nb;
+  for (uint32_t a = 0; a < nv; ++a) {
+    nb.clear();
+    for (uint32_t k = m.starStart[a]; k < m.starStart[a + 1]; ++k)
+      for (int c = 0; c < 3; ++c)
+        if (m.tri[3 * size_t(m.starTri[k]) + c] > a) nb.push_back(m.tri[3 * size_t(m.starTri[k]) + c]);
+    std::sort(nb.begin(), nb.end());
+    for (size_t i = 0; i + 1 < nb.size(); ++i)
+      if (nb[i] == nb[i + 1]) {
+        edges.push_back(key(a, nb[i]));
+        while (i + 1 < nb.size() && nb[i + 1] == nb[i]) ++i;
+      }
+  }
   size_t flips = 0;
   for (uint64_t k : edges) {
-    auto it = edgeTris.find(k);
-    if (it == edgeTris.end() || it->second[1] == kNoTri) continue;
-    const uint32_t t0 = it->second[0], t1 = it->second[1];
+    const std::array<uint32_t, 2> e01 = edgeAt(k);
+    if (e01[1] == kNoTri) continue;  // flipped away earlier in this pass
+    const uint32_t t0 = e01[0], t1 = e01[1];
     const uint32_t a = uint32_t(k >> 32), b = uint32_t(k & 0xffffffffu);
     auto opposite = [&](uint32_t t) {
       for (int c = 0; c < 3; ++c)
@@ -250,18 +270,20 @@ size_t flipPass(Mesh& m, std::vector<uint8_t>& touched) {
     if (!(std::min(n0, n1) > before + 1e-6)) continue;
     m.minAngle[t0] = n0;
     m.minAngle[t1] = n1;
-    // the edges (x, c1) of t1 and (y, c0) of t0 change sides
-    m.tri[3 * size_t(t0)] = c0, m.tri[3 * size_t(t0) + 1] = x, m.tri[3 * size_t(t0) + 2] = c1;
-    m.tri[3 * size_t(t1)] = c1, m.tri[3 * size_t(t1) + 1] = y, m.tri[3 * size_t(t1) + 2] = c0;
-    edgeTris.erase(it);
-    edgeTris[key(c0, c1)] = {t0, t1};
+    // the edges (x, c1) of t1 and (y, c0) of t0 change sides (read before the triangles change)
     auto swapTri = [&](uint32_t u, uint32_t w, uint32_t from, uint32_t to) {
-      auto& e = edgeTris[key(u, w)];
+      std::array<uint32_t, 2> e = edgeAt(key(u, w));
       for (auto& f : e)
         if (f == from) f = to;
+      return e;
     };
-    swapTri(x, c1, t1, t0);
-    swapTri(y, c0, t0, t1);
+    const std::array<uint32_t, 2> xc1 = swapTri(x, c1, t1, t0), yc0 = swapTri(y, c0, t0, t1);
+    m.tri[3 * size_t(t0)] = c0, m.tri[3 * size_t(t0) + 1] = x, m.tri[3 * size_t(t0) + 2] = c1;
+    m.tri[3 * size_t(t1)] = c1, m.tri[3 * size_t(t1) + 1] = y, m.tri[3 * size_t(t1) + 2] = c0;
+    changed[k] = {kNoTri, kNoTri};  // flipped away
+    changed[key(c0, c1)] = {t0, t1};
+    changed[key(x, c1)] = xc1;
+    changed[key(y, c0)] = yc0;
     touched[x] = touched[y] = touched[c0] = touched[c1] = 1;
     ++flips;
   }
