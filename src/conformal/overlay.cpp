@@ -364,7 +364,6 @@ Pullback::Pullback(std::vector<double> inputPositions, std::vector<int> inputTri
       inTri_(std::move(inputTriangles)),
       xy_(std::move(xy)),
       fTri_(std::move(finalTriangles)),
-      u_(std::move(u)),
       finalToDelaunay_(std::move(finalToDelaunay)),
       delaunayToInput_(std::move(delaunayToInput)) {
   const int nF = int(fTri_.size() / 3), nV = int(xy_.size() / 2);
@@ -405,6 +404,13 @@ Pullback::Pullback(std::vector<double> inputPositions, std::vector<int> inputTri
   for (int t = 0; t < nF; ++t)
     for (int X = range[t][0]; X <= range[t][1]; ++X)
       for (int Y = range[t][2]; Y <= range[t][3]; ++Y) gridFaces_[fill[size_t(Y) * nx_ + X]++] = t;
+  // Per corner, the factor from Euclidean barycentrics to base-decorated coordinates.
+  fScale_.resize(3 * size_t(nF));
+  for (int t = 0; t < nF; ++t) {
+    double umax = -1e300;
+    for (int k = 0; k < 3; ++k) umax = std::max(umax, u[fTri_[3 * t + k]]);
+    for (int k = 0; k < 3; ++k) fScale_[3 * size_t(t) + k] = std::exp(u[fTri_[3 * t + k]] - umax);
+  }
   // Face adjacency for the walk: corners sorted by their opposite edge; an edge with exactly two
   // corners joins two faces.
   fNbr_.assign(3 * size_t(nF), -1);
@@ -498,11 +504,9 @@ bool Pullback::finish(int t, const double B[3], PullbackPoint& out) const {
     b = std::max(b, 0.0);
     s += b;
   }
-  double umax = -1e300;
-  for (int k = 0; k < 3; ++k) umax = std::max(umax, u_[fTri_[3 * t + k]]);
   // Final Euclidean barycentrics -> base-decorated (hyperbolic) coordinates.
   double Xc[3];
-  for (int k = 0; k < 3; ++k) Xc[k] = bestB[k] / s * std::exp(u_[fTri_[3 * t + k]] - umax);
+  for (int k = 0; k < 3; ++k) Xc[k] = bestB[k] / s * fScale_[3 * size_t(t) + k];
   int dFace, inFace;
   double dBary[3], m1, m2;
   if (!finalToDelaunay_.map(t, Xc, dFace, dBary, m1)) return false;

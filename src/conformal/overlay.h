@@ -90,7 +90,6 @@ class Pullback {
   std::vector<int> inTri_;         // 3 nF input triangles
   std::vector<double> xy_;         // 2 nV layout positions
   std::vector<int> fTri_;          // 3 nFinal final triangles
-  std::vector<double> u_;          // per vertex log scale factor
   OverlayMap finalToDelaunay_, delaunayToInput_;
   // Barycentrics of (x, y) in final face t and the grid search's score (min coordinate times
   // sqrt(area) / diam); false when t has no positive area.
@@ -99,6 +98,7 @@ class Pullback {
   bool finish(int t, const double B[3], PullbackPoint& out) const;
 
   std::vector<int> fNbr_;          // 3 nFinal: the face across the edge opposite corner k, -1 none
+  std::vector<double> fScale_;     // 3 nFinal: exp(u - max u over the face) per corner
   double lo_[2] = {0, 0}, cell_ = 1, diam_ = 1;
   int nx_ = 1, ny_ = 1;
   std::vector<int> gridStart_, gridFaces_;
