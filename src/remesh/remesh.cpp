@@ -61,6 +61,7 @@ struct PatchWork {
   // latest meshing
   std::vector<uint32_t> localToGlobal;  // planar vertex -> output vertex (samples first)
   std::vector<F::Vec3> interiorPositions;  // positions of planar vertices that are interior
+  std::vector<int> layoutFaces;             // per planar vertex: the flattened face of its lift, -1 none
   std::vector<uint32_t> triangles;         // planar triangles (local indices)
   std::vector<double> planarPoints;        // planar positions of the latest meshing
   uint64_t builtAt = 0;
@@ -501,6 +502,7 @@ void Pipeline::meshPatch(uint32_t p, bool splitSegments) {
   const size_t nv = pmsh.vertexCount();
   w.localToGlobal.assign(nv, kNone);
   w.interiorPositions.assign(nv, F::Vec3{});
+  w.layoutFaces.assign(nv, -1);
   std::vector<uint8_t> onBoundary(nv, 0);
   {
     std::unordered_map<uint64_t, int> cnt;
@@ -531,6 +533,7 @@ void Pipeline::meshPatch(uint32_t p, bool splitSegments) {
     if (!liftPoint(w, pmsh.points[2 * v], pmsh.points[2 * v + 1], q))
       fail(Code::NumericalFailure, Stage::Lift, "a refinement vertex lies outside the flattened patch");
     w.interiorPositions[v] = {q.position[0], q.position[1], q.position[2]};
+    w.layoutFaces[v] = q.layoutFace;
   }
   w.triangles = pmsh.triangles;
   w.planarPoints = pmsh.points;
@@ -555,11 +558,10 @@ void Pipeline::optimizeMesh(uint32_t p) {
   oo.maxIterations = opt_.optimizeIterations;
   oo.tolerance = opt_.optimizeTolerance;
   // per vertex: the layout face its latest lift landed in, where the next one starts looking
-  std::vector<int> hint(nv, -1);
   auto lift = [&](uint32_t v, double x, double y, F::Vec3& out) {
     PullbackPoint q;
-    if (!liftPoint(w, x, y, q, hint[v])) return false;
-    hint[v] = q.layoutFace;
+    if (!liftPoint(w, x, y, q, w.layoutFaces[v])) return false;
+    w.layoutFaces[v] = q.layoutFace;
     out = {q.position[0], q.position[1], q.position[2]};
     return true;
   };
