@@ -109,17 +109,6 @@ bool tryMove(Mesh& m, uint32_t v, double x, double y, const LiftFn& lift, double
   const uint32_t* s = &m.starTri[m.starStart[v]];
   const size_t n = m.starStart[v + 1] - m.starStart[v];
   const double oldMin = old.min, oldSum = old.sum;
-  const double q[2] = {x, y};
-  for (size_t i = 0; i < n; ++i) {
-    const uint32_t* t = &m.tri[3 * size_t(s[i])];
-    const double* c[3];
-    for (int k = 0; k < 3; ++k) c[k] = t[k] == v ? q : m.p(t[k]);
-    // strictly positive, relative to the triangle's size (no sliver in the plane either)
-    const double l2 = std::max({std::pow(c[1][0] - c[0][0], 2) + std::pow(c[1][1] - c[0][1], 2),
-                                std::pow(c[2][0] - c[1][0], 2) + std::pow(c[2][1] - c[1][1], 2),
-                                std::pow(c[0][0] - c[2][0], 2) + std::pow(c[0][1] - c[2][1], 2)});
-    if (!(orient2d(c[0], c[1], c[2]) > 1e-6 * l2)) return false;
-  }
   Vec3 P;
   if (!lift(v, x, y, P)) return false;
   const Vec3 keep = m.pos[v];
@@ -143,6 +132,21 @@ bool tryMove(Mesh& m, uint32_t v, double x, double y, const LiftFn& lift, double
     const bool surelyRejected = aMin + e < floor ||
                                 (oldMin < bound ? aMin + e <= oldMin + 1e-9 : aSum + e * double(n) + 1e-9 <= oldSum + 1e-9 * n);
     if (surelyRejected) {
+      m.pos[v] = keep;
+      return false;
+    }
+  }
+  // no star triangle may be inverted or a sliver in the plane: strictly positive, relative to
+  // the triangle's size (checked after the angles, which reject far more candidates)
+  const double q[2] = {x, y};
+  for (size_t i = 0; i < n; ++i) {
+    const uint32_t* t = &m.tri[3 * size_t(s[i])];
+    const double* c[3];
+    for (int k = 0; k < 3; ++k) c[k] = t[k] == v ? q : m.p(t[k]);
+    const double l2 = std::max({std::pow(c[1][0] - c[0][0], 2) + std::pow(c[1][1] - c[0][1], 2),
+                                std::pow(c[2][0] - c[1][0], 2) + std::pow(c[2][1] - c[1][1], 2),
+                                std::pow(c[0][0] - c[2][0], 2) + std::pow(c[0][1] - c[2][1], 2)});
+    if (!(orient2d(c[0], c[1], c[2]) > 1e-6 * l2)) {
       m.pos[v] = keep;
       return false;
     }
@@ -257,15 +261,16 @@ size_t flipPass(Mesh& m, std::vector<uint8_t>& touched) {
     for (int c = 0; c < 3; ++c)
       if (m.tri[3 * t0 + c] == a && m.tri[3 * t0 + (c + 1) % 3] == b) x = a, y = b;
       else if (m.tri[3 * t0 + c] == b && m.tri[3 * t0 + (c + 1) % 3] == a) x = b, y = a;
-    // new triangles (c0, x, c1) and (c1, y, c0): both must be strictly positive in the plane
-    const double l2 = std::pow(m.p(c0)[0] - m.p(c1)[0], 2) + std::pow(m.p(c0)[1] - m.p(c1)[1], 2);
-    if (!(orient2d(m.p(c0), m.p(x), m.p(c1)) > 1e-6 * l2) || !(orient2d(m.p(c1), m.p(y), m.p(c0)) > 1e-6 * l2)) continue;
+    // new triangles (c0, x, c1) and (c1, y, c0). Most edges do not flip: the approximate angles
+    // are sure of that for nearly all, so they are asked first, and atan2 only where they are not
     const double before = std::min(m.minAngle[t0], m.minAngle[t1]);
-    // most edges do not flip: skip atan2 where the approximate angles are sure of that
     const Corner k0 = smallestCorner(m.pos[c0], m.pos[x], m.pos[c1]);
     if (cornerDegApprox(k0) + kApproxErrDeg <= before + 1e-6) continue;
     const Corner k1 = smallestCorner(m.pos[c1], m.pos[y], m.pos[c0]);
     if (cornerDegApprox(k1) + kApproxErrDeg <= before + 1e-6) continue;
+    // both must be strictly positive in the plane
+    const double l2 = std::pow(m.p(c0)[0] - m.p(c1)[0], 2) + std::pow(m.p(c0)[1] - m.p(c1)[1], 2);
+    if (!(orient2d(m.p(c0), m.p(x), m.p(c1)) > 1e-6 * l2) || !(orient2d(m.p(c1), m.p(y), m.p(c0)) > 1e-6 * l2)) continue;
     const double n0 = cornerDeg(k0), n1 = cornerDeg(k1);
     if (!(std::min(n0, n1) > before + 1e-6)) continue;
     m.minAngle[t0] = n0;
