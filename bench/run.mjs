@@ -390,7 +390,7 @@ function sectionRemesh() {
   const cases = [...(models.includes('fandisk.off') ? [['fandisk.off', 0.004, QUICK ? 1 : REPEAT]] : []), ...models.map((m) => [m, 0.01, 1])];
   const cgal = peer('cgal_remesh');
   const haveGmsh = !!sh('command -v gmsh');
-  const rows = [];
+  const rows = [], optimizeRows = [];
   const stlDir = path.join(WORK, 'stl');
   mkdirSync(stlDir, { recursive: true });
   for (const [model, rel, reps] of cases) {
@@ -427,10 +427,24 @@ function sectionRemesh() {
     // ours
     const outFile = path.join(WORK, `remesh-ours-${base}.obj`);
     const o = oursRemesh(input, rel, outFile);
-    row.ours = record(o ? repeatRun(o[0], o[1], reps, { timeout: 300 }) : null, ['triangles', 'seconds']);
+    const oursRuns = o ? repeatRun(o[0], o[1], reps, { timeout: 300 }) : null;
+    row.ours = record(oursRuns, ['triangles', 'seconds']);
     if (!o) row.ours.note = `${NOT_YET}: conformesh remesh`;
     else if (row.ours.ok) row.ours.quality = quality(outFile, input);
     row.timeRatioOursToCgal = ratio(row.ours.seconds, row.cgal.seconds);
+    if (oursRuns?.ok && model === 'fandisk.off' && rel === 0.004) {
+      // issue 9: the optimization stage costs at most half of the remesh without it (the CLI's
+      // own stage times, medians over the same number of runs)
+      const noOpt = repeatRun(o[0], [...o[1], '--no-optimize'], reps, { timeout: 300 });
+      const stage = (rr, k) => median(rr.runs.map((r) => Number(r.json?.seconds?.[k])));
+      const c = { target: 0.5, optimizeSeconds: stage(oursRuns, 'optimize'), totalSeconds: stage(oursRuns, 'total') };
+      if (noOpt.ok) {
+        c.noOptimizeTotalSeconds = stage(noOpt, 'total');
+        c.ratio = ratio(c.optimizeSeconds, c.noOptimizeTotalSeconds);
+      } else c.error = noOpt.error;
+      row.optimizeCost = c;
+      optimizeRows.push([model, rel, c.optimizeSeconds, c.totalSeconds, c.noOptimizeTotalSeconds ?? null, c.ratio ?? null, c.target]);
+    }
     sec.rows.push(row);
     const q = (r) => (r.ok && r.quality && !r.quality.error ? r.quality : null);
     const cell = (r) => (r.ok ? r.seconds : (r.available === false ? (r.note?.startsWith(NOT_YET) ? NOT_YET : '—') : `failed: ${String(r.error || '').slice(0, 40)}`));
@@ -443,6 +457,8 @@ function sectionRemesh() {
     }
   }
   table('remesh: end to end (seconds: median; quality by our quality_tool)', ['model', 'edge/diag', 'tool', 'seconds', 'process CPU s', 'triangles', 'min∠', 'mean min∠', '% <30°', 'Hausdorff/diag', 'features kept %', 'topology kept'], rows);
+  if (optimizeRows.length)
+    table('remesh: cost of the optimization stage (ours, median seconds; target: optimize / total without it ≤ 0.5)', ['model', 'edge/diag', 'optimize s', 'total s', 'total s with --no-optimize', 'ratio', 'target'], optimizeRows);
   return sec;
 }
 

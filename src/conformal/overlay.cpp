@@ -364,7 +364,6 @@ Pullback::Pullback(std::vector<double> inputPositions, std::vector<int> inputTri
       inTri_(std::move(inputTriangles)),
       xy_(std::move(xy)),
       fTri_(std::move(finalTriangles)),
-      u_(std::move(u)),
       finalToDelaunay_(std::move(finalToDelaunay)),
       delaunayToInput_(std::move(delaunayToInput)) {
   const int nF = int(fTri_.size() / 3), nV = int(xy_.size() / 2);
@@ -405,6 +404,46 @@ Pullback::Pullback(std::vector<double> inputPositions, std::vector<int> inputTri
   for (int t = 0; t < nF; ++t)
     for (int X = range[t][0]; X <= range[t][1]; ++X)
       for (int Y = range[t][2]; Y <= range[t][3]; ++Y) gridFaces_[fill[size_t(Y) * nx_ + X]++] = t;
+  // Per corner, the factor from Euclidean barycentrics to base-decorated coordinates.
+  fScale_.resize(3 * size_t(nF));
+  for (int t = 0; t < nF; ++t) {
+    double umax = -1e300;
+    for (int k = 0; k < 3; ++k) umax = std::max(umax, u[fTri_[3 * t + k]]);
+    for (int k = 0; k < 3; ++k) fScale_[3 * size_t(t) + k] = std::exp(u[fTri_[3 * t + k]] - umax);
+  }
+  // Face adjacency for the walk: corners sorted by their opposite edge; an edge with exactly two
+  // corners joins two faces.
+  fNbr_.assign(3 * size_t(nF), -1);
+  std::vector<std::pair<uint64_t, int>> edges(3 * size_t(nF));
+  for (int t = 0; t < nF; ++t)
+    for (int k = 0; k < 3; ++k) {
+      const uint64_t a = uint32_t(fTri_[3 * t + (k + 1) % 3]), b = uint32_t(fTri_[3 * t + (k + 2) % 3]);
+      edges[3 * size_t(t) + k] = {std::min(a, b) << 32 | std::max(a, b), 3 * t + k};
+    }
+  std::sort(edges.begin(), edges.end());
+  for (size_t i = 0; i < edges.size();) {
+    size_t j = i;
+    while (j < edges.size() && edges[j].first == edges[i].first) ++j;
+    if (j - i == 2) {
+      fNbr_[edges[i].second] = edges[i + 1].second / 3;
+      fNbr_[edges[i + 1].second] = edges[i].second / 3;
+    }
+    i = j;
+  }
+}
+
+bool Pullback::faceCoords(int t, double x, double y, double B[3], double& score) const {
+  const double* a = &xy_[2 * fTri_[3 * t]];
+  const double* b = &xy_[2 * fTri_[3 * t + 1]];
+  const double* d = &xy_[2 * fTri_[3 * t + 2]];
+  const double area = (b[0] - a[0]) * (d[1] - a[1]) - (b[1] - a[1]) * (d[0] - a[0]);
+  if (!(area > 0)) return false;
+  B[0] = ((b[0] - x) * (d[1] - y) - (b[1] - y) * (d[0] - x)) / area;
+  B[1] = ((d[0] - x) * (a[1] - y) - (d[1] - y) * (a[0] - x)) / area;
+  B[2] = 1 - B[0] - B[1];
+  // Signed distance-like measure relative to the domain size.
+  score = std::min(B[0], std::min(B[1], B[2])) * std::sqrt(area) / diam_;
+  return true;
 }
 
 bool Pullback::locate(double x, double y, PullbackPoint& out, double tolerance) const {
@@ -418,17 +457,8 @@ bool Pullback::locate(double x, double y, PullbackPoint& out, double tolerance) 
         const size_t c = size_t(gy) * nx_ + gx;
         for (int k = gridStart_[c]; k < gridStart_[c + 1]; ++k) {
           const int t = gridFaces_[k];
-          const double* a = &xy_[2 * fTri_[3 * t]];
-          const double* b = &xy_[2 * fTri_[3 * t + 1]];
-          const double* d = &xy_[2 * fTri_[3 * t + 2]];
-          const double area = (b[0] - a[0]) * (d[1] - a[1]) - (b[1] - a[1]) * (d[0] - a[0]);
-          if (!(area > 0)) continue;
-          double B[3];
-          B[0] = ((b[0] - x) * (d[1] - y) - (b[1] - y) * (d[0] - x)) / area;
-          B[1] = ((d[0] - x) * (a[1] - y) - (d[1] - y) * (a[0] - x)) / area;
-          B[2] = 1 - B[0] - B[1];
-          // Signed distance-like measure relative to the domain size.
-          const double m = std::min(B[0], std::min(B[1], B[2])) * std::sqrt(area) / diam_;
+          double B[3], m;
+          if (!faceCoords(t, x, y, B, m)) continue;
           if (m > bestMin) {
             bestMin = m;
             bestFace = t;
@@ -437,17 +467,46 @@ bool Pullback::locate(double x, double y, PullbackPoint& out, double tolerance) 
         }
       }
   if (bestFace < 0 || bestMin < -tolerance) return false;
+  return finish(bestFace, bestB, out);
+}
+
+bool Pullback::locate(double x, double y, int hintFace, PullbackPoint& out, double tolerance) const {
+  // A point this far inside a face (in the grid search's score) is in no other face of an
+  // embedded layout, by far more than the round-off of the score (~1e-16): the grid search
+  // would pick the same face with the same coordinates.
+  constexpr double kSurelyInside = 1e-12;
+  constexpr int kMaxSteps = 1000;
+  const int nF = int(fTri_.size() / 3);
+  if (hintFace >= 0 && hintFace < nF) {
+    int t = hintFace;
+    for (int step = 0; step < kMaxSteps; ++step) {
+      double B[3], m;
+      if (!faceCoords(t, x, y, B, m)) break;
+      if (m >= kSurelyInside) {
+        if (!finish(t, B, out)) return false;
+        out.walkSteps = step;
+        return true;
+      }
+      // cross the edge opposite the most negative coordinate (the point is beyond its line)
+      const int k = B[0] <= B[1] && B[0] <= B[2] ? 0 : (B[1] <= B[2] ? 1 : 2);
+      if (!(B[k] < 0)) break;  // inside, but too near an edge to be sure
+      t = fNbr_[3 * size_t(t) + k];
+      if (t < 0) break;  // off the domain across this edge, or a hole: the grid search decides
+    }
+  }
+  return locate(x, y, out, tolerance);
+}
+
+bool Pullback::finish(int t, const double B[3], PullbackPoint& out) const {
+  double bestB[3] = {B[0], B[1], B[2]};
   double s = 0;
   for (double& b : bestB) {
     b = std::max(b, 0.0);
     s += b;
   }
-  const int t = bestFace;
-  double umax = -1e300;
-  for (int k = 0; k < 3; ++k) umax = std::max(umax, u_[fTri_[3 * t + k]]);
   // Final Euclidean barycentrics -> base-decorated (hyperbolic) coordinates.
   double Xc[3];
-  for (int k = 0; k < 3; ++k) Xc[k] = bestB[k] / s * std::exp(u_[fTri_[3 * t + k]] - umax);
+  for (int k = 0; k < 3; ++k) Xc[k] = bestB[k] / s * fScale_[3 * size_t(t) + k];
   int dFace, inFace;
   double dBary[3], m1, m2;
   if (!finalToDelaunay_.map(t, Xc, dFace, dBary, m1)) return false;
@@ -455,6 +514,7 @@ bool Pullback::locate(double x, double y, PullbackPoint& out, double tolerance) 
   out.face = uint32_t(inFace);
   out.margin = std::min(m1, m2);
   out.layoutFace = t;
+  out.walkSteps = -1;
   for (int k = 0; k < 3; ++k) {
     out.position[k] = 0;
     for (int q = 0; q < 3; ++q) out.position[k] += out.bary[q] * inPos_[3 * size_t(inTri_[3 * out.face + q]) + k];

@@ -30,6 +30,9 @@ struct PullbackPoint {
   //! coordinate, normalized; >= 0 inside, slightly negative only from round-off).
   double margin = 0.0;
   int layoutFace = -1;           //!< face of the final intrinsic triangulation containing (x, y)
+  //! Hinted locate only: faces the walk crossed to reach layoutFace; -1 when the grid search
+  //! decided (no hint, or the walk could not be sure).
+  int walkSteps = -1;
 };
 
 //! Overlay of a source triangulation traced in a target one (same vertices): for every target
@@ -64,6 +67,16 @@ class Pullback {
   //! when the point is outside the domain (farther than `tolerance` times the domain diameter).
   bool locate(double x, double y, PullbackPoint& out, double tolerance = 1e-9) const;
 
+  //! The same, starting from a hint: hintFace is a face of the final triangulation near (x, y)
+  //! (e.g. PullbackPoint::layoutFace of an earlier nearby point; -1: none). A visibility walk
+  //! from the hint (Devillers–Pion–Teillaud 2002, "Walking in a triangulation"; it terminates on
+  //! a Delaunay triangulation, Edelsbrunner 1990, and the final triangulation is Delaunay in the
+  //! layout) ends in the face containing the point; where the point is not clearly inside a
+  //! face (near an edge, off the domain, a walk that hits the boundary or its step cap), the
+  //! grid search above decides. On an embedded layout (flatten(): invertedTriangles == 0 and
+  //! boundaryCrossings == 0) the result is bit-identical to locate(x, y, out, tolerance).
+  bool locate(double x, double y, int hintFace, PullbackPoint& out, double tolerance = 1e-9) const;
+
   size_t crossings() const { return finalToDelaunay_.crossings + delaunayToInput_.crossings; }
   bool empty() const { return fTri_.empty(); }
 
@@ -77,8 +90,15 @@ class Pullback {
   std::vector<int> inTri_;         // 3 nF input triangles
   std::vector<double> xy_;         // 2 nV layout positions
   std::vector<int> fTri_;          // 3 nFinal final triangles
-  std::vector<double> u_;          // per vertex log scale factor
   OverlayMap finalToDelaunay_, delaunayToInput_;
+  // Barycentrics of (x, y) in final face t and the grid search's score (min coordinate times
+  // sqrt(area) / diam); false when t has no positive area.
+  bool faceCoords(int t, double x, double y, double B[3], double& score) const;
+  // From final face t and the (unclamped) barycentrics of the point there to the input surface.
+  bool finish(int t, const double B[3], PullbackPoint& out) const;
+
+  std::vector<int> fNbr_;          // 3 nFinal: the face across the edge opposite corner k, -1 none
+  std::vector<double> fScale_;     // 3 nFinal: exp(u - max u over the face) per corner
   double lo_[2] = {0, 0}, cell_ = 1, diam_ = 1;
   int nx_ = 1, ny_ = 1;
   std::vector<int> gridStart_, gridFaces_;

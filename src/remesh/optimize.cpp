@@ -16,6 +16,39 @@ constexpr uint32_t kNoTri = 0xffffffffu;
 
 using planar::orient2d;
 
+// The smallest angle of a 3D triangle is at the corner opposite its shortest edge: the length
+// of the cross product and the dot product of the two edges there (angle = atan2(cr, dt)).
+struct Corner {
+  double cr, dt;
+};
+
+Corner smallestCorner(const Vec3& a, const Vec3& b, const Vec3& c) {
+  const Vec3 ab = b - a, bc = c - b, ca = a - c;
+  const double lab = features::dot(ab, ab), lbc = features::dot(bc, bc), lca = features::dot(ca, ca);
+  Vec3 u, w;
+  if (lab <= lbc && lab <= lca) u = a - c, w = b - c;  // at c
+  else if (lbc <= lca) u = b - a, w = c - a;           // at a
+  else u = c - b, w = a - b;                           // at b
+  return {features::norm(features::cross(u, w)), features::dot(u, w)};
+}
+
+double cornerDeg(const Corner& k) { return ((k.cr == 0 && k.dt == 0) ? 0.0 : std::atan2(k.cr, k.dt)) * kRadToDeg; }
+
+// cornerDeg without atan2, to within kApproxErrDeg (NaN for a degenerate corner). atan(z) on
+// [0, 1] by the polynomial of Abramowitz–Stegun 4.4.49 (Hastings 1955), |error| <= 2e-8 rad
+// (1.2e-6 degrees); the bound used has a margin of ~80 over it.
+constexpr double kApproxErrDeg = 1e-4;
+double cornerDegApprox(const Corner& k) {
+  constexpr double kHalfPi = 1.57079632679489661923, kPi = 3.14159265358979323846;
+  const double c = k.cr, d = std::abs(k.dt);
+  const bool steep = c > d;
+  const double z = steep ? d / c : c / d, z2 = z * z;
+  const double p = 1 + z2 * (-0.3333314528 + z2 * (0.1999355085 + z2 * (-0.1420889944 + z2 * (0.1065626393 + z2 * (-0.0752896400 + z2 * (0.0429096138 + z2 * (-0.0161657367 + z2 * 0.0028662257)))))));
+  double r = steep ? kHalfPi - z * p : z * p;
+  if (k.dt < 0) r = kPi - r;
+  return r * kRadToDeg;
+}
+
 // Circumcenter of a planar triangle; false when it is degenerate.
 bool circumcenter(const double* a, const double* b, const double* c, double out[2]) {
   const double bx = b[0] - a[0], by = b[1] - a[1], cx = c[0] - a[0], cy = c[1] - a[1];
@@ -76,30 +109,56 @@ bool tryMove(Mesh& m, uint32_t v, double x, double y, const LiftFn& lift, double
   const uint32_t* s = &m.starTri[m.starStart[v]];
   const size_t n = m.starStart[v + 1] - m.starStart[v];
   const double oldMin = old.min, oldSum = old.sum;
+  Vec3 P;
+  if (!lift(v, x, y, P)) return false;
+  const Vec3 keep = m.pos[v];
+  m.pos[v] = P;
+  const double floor = oldMin >= bound ? bound : oldMin;
+  // Most candidates are rejected: decide from the approximate angles where they are sure (each
+  // is within kApproxErrDeg of its exact value), and take atan2 only for the rest. The exact
+  // test below is the rule; this one only skips work where its answer is known.
+  constexpr size_t kBuf = 64;
+  Corner corner[kBuf];
+  if (n <= kBuf) {
+    double aMin = 180, aSum = 0;
+    for (size_t i = 0; i < n; ++i) {
+      const uint32_t* t = &m.tri[3 * size_t(s[i])];
+      corner[i] = smallestCorner(m.pos[t[0]], m.pos[t[1]], m.pos[t[2]]);
+      const double a = cornerDegApprox(corner[i]);
+      aMin = std::min(aMin, a);
+      aSum += a;
+    }
+    const double e = kApproxErrDeg;
+    const bool surelyRejected = aMin + e < floor ||
+                                (oldMin < bound ? aMin + e <= oldMin + 1e-9 : aSum + e * double(n) + 1e-9 <= oldSum + 1e-9 * n);
+    if (surelyRejected) {
+      m.pos[v] = keep;
+      return false;
+    }
+  }
+  // no star triangle may be inverted or a sliver in the plane: strictly positive, relative to
+  // the triangle's size (checked after the angles, which reject far more candidates)
   const double q[2] = {x, y};
   for (size_t i = 0; i < n; ++i) {
     const uint32_t* t = &m.tri[3 * size_t(s[i])];
     const double* c[3];
     for (int k = 0; k < 3; ++k) c[k] = t[k] == v ? q : m.p(t[k]);
-    // strictly positive, relative to the triangle's size (no sliver in the plane either)
     const double l2 = std::max({std::pow(c[1][0] - c[0][0], 2) + std::pow(c[1][1] - c[0][1], 2),
                                 std::pow(c[2][0] - c[1][0], 2) + std::pow(c[2][1] - c[1][1], 2),
                                 std::pow(c[0][0] - c[2][0], 2) + std::pow(c[0][1] - c[2][1], 2)});
-    if (!(orient2d(c[0], c[1], c[2]) > 1e-6 * l2)) return false;
+    if (!(orient2d(c[0], c[1], c[2]) > 1e-6 * l2)) {
+      m.pos[v] = keep;
+      return false;
+    }
   }
-  Vec3 P;
-  if (!lift(x, y, P)) return false;
-  const Vec3 keep = m.pos[v];
-  m.pos[v] = P;
   double newMin = 180, newSum = 0;
-  double fresh[64];
+  double fresh[kBuf];
   for (size_t i = 0; i < n; ++i) {
-    double a = m.triMin(s[i]);
-    if (i < 64) fresh[i] = a;
+    double a = i < kBuf ? cornerDeg(corner[i]) : m.triMin(s[i]);  // the same value as triMin
+    if (i < kBuf) fresh[i] = a;
     newMin = std::min(newMin, a);
     newSum += a;
   }
-  const double floor = oldMin >= bound ? bound : oldMin;
   const bool better = oldMin < bound ? newMin > oldMin + 1e-9 : newSum > oldSum + 1e-9 * n;
   if (newMin < floor || !better) {
     m.pos[v] = keep;
@@ -107,7 +166,7 @@ bool tryMove(Mesh& m, uint32_t v, double x, double y, const LiftFn& lift, double
   }
   m.xy[2 * size_t(v)] = x;
   m.xy[2 * size_t(v) + 1] = y;
-  for (size_t i = 0; i < n; ++i) m.minAngle[s[i]] = i < 64 ? fresh[i] : m.triMin(s[i]);
+  for (size_t i = 0; i < n; ++i) m.minAngle[s[i]] = i < kBuf ? fresh[i] : m.triMin(s[i]);
   old = {newMin, newSum};
   return true;
 }
@@ -149,26 +208,46 @@ bool neighbourCentroid(const Mesh& m, uint32_t v, double out[2]) {
 
 // One pass of flips: an interior edge flips when its quad is strictly convex in the plane and
 // the smaller 3D min angle of its two triangles gets larger. Returns the number of flips.
+// Pre: m's stars are current (built after the last change of m.tri).
 size_t flipPass(Mesh& m, std::vector<uint8_t>& touched) {
   auto key = [](uint32_t a, uint32_t b) { return (uint64_t(std::min(a, b)) << 32) | std::max(a, b); };
-  std::unordered_map<uint64_t, std::array<uint32_t, 2>> edgeTris;
-  edgeTris.reserve(m.tri.size());
-  const uint32_t nt = uint32_t(m.tri.size() / 3);
-  for (uint32_t t = 0; t < nt; ++t)
-    for (int c = 0; c < 3; ++c) {
-      auto& e = edgeTris.try_emplace(key(m.tri[3 * t + c], m.tri[3 * t + (c + 1) % 3]), std::array<uint32_t, 2>{kNoTri, kNoTri}).first->second;
-      (e[0] == kNoTri ? e[0] : e[1]) = t;
+  const uint32_t nt = uint32_t(m.tri.size() / 3), nv = uint32_t(m.xy.size() / 2);
+  // The triangles of an edge, first the one of smaller index, are found in the (pass-start)
+  // star of its smaller vertex; flips change those of four edges each, which are kept in
+  // `changed` from then on (an edge flipped away keeps an entry with no triangles).
+  std::unordered_map<uint64_t, std::array<uint32_t, 2>> changed;
+  auto edgeAt = [&](uint64_t k) {
+    if (const auto it = changed.find(k); it != changed.end()) return it->second;
+    std::array<uint32_t, 2> e{kNoTri, kNoTri};
+    const uint32_t a = uint32_t(k >> 32), b = uint32_t(k & 0xffffffffu);
+    for (uint32_t i = m.starStart[a]; i < m.starStart[a + 1]; ++i) {
+      const uint32_t t = m.starTri[i], *v = &m.tri[3 * size_t(t)];
+      if ((v[0] == a || v[1] == a || v[2] == a) && (v[0] == b || v[1] == b || v[2] == b)) (e[0] == kNoTri ? e[0] : e[1]) = t;
     }
+    return e;
+  };
+  // The interior edges in increasing key order (deterministic), from the stars: (a, b), a < b,
+  // is interior when b is in two triangles of a's star.
   std::vector<uint64_t> edges;
-  edges.reserve(edgeTris.size());
-  for (const auto& [k, e] : edgeTris)
-    if (e[1] != kNoTri) edges.push_back(k);
-  std::sort(edges.begin(), edges.end());  // deterministic order
+  edges.reserve(3 * size_t(nt) / 2 + 1);
+  std::vector<uint32_t> nb;
+  for (uint32_t a = 0; a < nv; ++a) {
+    nb.clear();
+    for (uint32_t k = m.starStart[a]; k < m.starStart[a + 1]; ++k)
+      for (int c = 0; c < 3; ++c)
+        if (m.tri[3 * size_t(m.starTri[k]) + c] > a) nb.push_back(m.tri[3 * size_t(m.starTri[k]) + c]);
+    std::sort(nb.begin(), nb.end());
+    for (size_t i = 0; i + 1 < nb.size(); ++i)
+      if (nb[i] == nb[i + 1]) {
+        edges.push_back(key(a, nb[i]));
+        while (i + 1 < nb.size() && nb[i + 1] == nb[i]) ++i;
+      }
+  }
   size_t flips = 0;
   for (uint64_t k : edges) {
-    auto it = edgeTris.find(k);
-    if (it == edgeTris.end() || it->second[1] == kNoTri) continue;
-    const uint32_t t0 = it->second[0], t1 = it->second[1];
+    const std::array<uint32_t, 2> e01 = edgeAt(k);
+    if (e01[1] == kNoTri) continue;  // flipped away earlier in this pass
+    const uint32_t t0 = e01[0], t1 = e01[1];
     const uint32_t a = uint32_t(k >> 32), b = uint32_t(k & 0xffffffffu);
     auto opposite = [&](uint32_t t) {
       for (int c = 0; c < 3; ++c)
@@ -182,26 +261,34 @@ size_t flipPass(Mesh& m, std::vector<uint8_t>& touched) {
     for (int c = 0; c < 3; ++c)
       if (m.tri[3 * t0 + c] == a && m.tri[3 * t0 + (c + 1) % 3] == b) x = a, y = b;
       else if (m.tri[3 * t0 + c] == b && m.tri[3 * t0 + (c + 1) % 3] == a) x = b, y = a;
-    // new triangles (c0, x, c1) and (c1, y, c0): both must be strictly positive in the plane
+    // new triangles (c0, x, c1) and (c1, y, c0). Most edges do not flip: the approximate angles
+    // are sure of that for nearly all, so they are asked first, and atan2 only where they are not
+    const double before = std::min(m.minAngle[t0], m.minAngle[t1]);
+    const Corner k0 = smallestCorner(m.pos[c0], m.pos[x], m.pos[c1]);
+    if (cornerDegApprox(k0) + kApproxErrDeg <= before + 1e-6) continue;
+    const Corner k1 = smallestCorner(m.pos[c1], m.pos[y], m.pos[c0]);
+    if (cornerDegApprox(k1) + kApproxErrDeg <= before + 1e-6) continue;
+    // both must be strictly positive in the plane
     const double l2 = std::pow(m.p(c0)[0] - m.p(c1)[0], 2) + std::pow(m.p(c0)[1] - m.p(c1)[1], 2);
     if (!(orient2d(m.p(c0), m.p(x), m.p(c1)) > 1e-6 * l2) || !(orient2d(m.p(c1), m.p(y), m.p(c0)) > 1e-6 * l2)) continue;
-    const double before = std::min(m.minAngle[t0], m.minAngle[t1]);
-    const double n0 = minAngleDeg3(m.pos[c0], m.pos[x], m.pos[c1]), n1 = minAngleDeg3(m.pos[c1], m.pos[y], m.pos[c0]);
+    const double n0 = cornerDeg(k0), n1 = cornerDeg(k1);
     if (!(std::min(n0, n1) > before + 1e-6)) continue;
     m.minAngle[t0] = n0;
     m.minAngle[t1] = n1;
-    // the edges (x, c1) of t1 and (y, c0) of t0 change sides
-    m.tri[3 * size_t(t0)] = c0, m.tri[3 * size_t(t0) + 1] = x, m.tri[3 * size_t(t0) + 2] = c1;
-    m.tri[3 * size_t(t1)] = c1, m.tri[3 * size_t(t1) + 1] = y, m.tri[3 * size_t(t1) + 2] = c0;
-    edgeTris.erase(it);
-    edgeTris[key(c0, c1)] = {t0, t1};
+    // the edges (x, c1) of t1 and (y, c0) of t0 change sides (read before the triangles change)
     auto swapTri = [&](uint32_t u, uint32_t w, uint32_t from, uint32_t to) {
-      auto& e = edgeTris[key(u, w)];
+      std::array<uint32_t, 2> e = edgeAt(key(u, w));
       for (auto& f : e)
         if (f == from) f = to;
+      return e;
     };
-    swapTri(x, c1, t1, t0);
-    swapTri(y, c0, t0, t1);
+    const std::array<uint32_t, 2> xc1 = swapTri(x, c1, t1, t0), yc0 = swapTri(y, c0, t0, t1);
+    m.tri[3 * size_t(t0)] = c0, m.tri[3 * size_t(t0) + 1] = x, m.tri[3 * size_t(t0) + 2] = c1;
+    m.tri[3 * size_t(t1)] = c1, m.tri[3 * size_t(t1) + 1] = y, m.tri[3 * size_t(t1) + 2] = c0;
+    changed[k] = {kNoTri, kNoTri};  // flipped away
+    changed[key(c0, c1)] = {t0, t1};
+    changed[key(x, c1)] = xc1;
+    changed[key(y, c0)] = yc0;
     touched[x] = touched[y] = touched[c0] = touched[c1] = 1;
     ++flips;
   }
@@ -218,16 +305,9 @@ double meanMin(const Mesh& m) {
 
 }  // namespace
 
-double minAngleDeg3(const Vec3& a, const Vec3& b, const Vec3& c) {
-  // the smallest angle is opposite the shortest edge: one atan2 instead of three
-  const Vec3 ab = b - a, bc = c - b, ca = a - c;
-  const double lab = features::dot(ab, ab), lbc = features::dot(bc, bc), lca = features::dot(ca, ca);
-  double angle;
-  if (lab <= lbc && lab <= lca) angle = features::angleBetween(a - c, b - c);       // at c
-  else if (lbc <= lca) angle = features::angleBetween(b - a, c - a);                // at a
-  else angle = features::angleBetween(c - b, a - b);                                // at b
-  return angle * kRadToDeg;
-}
+double minAngleDeg3(const Vec3& a, const Vec3& b, const Vec3& c) { return cornerDeg(smallestCorner(a, b, c)); }
+
+double minAngleDeg3Approx(const Vec3& a, const Vec3& b, const Vec3& c) { return cornerDegApprox(smallestCorner(a, b, c)); }
 
 OptimizeStats optimizePatch(std::vector<double>& xy, std::vector<uint32_t>& triangles, std::vector<Vec3>& pos,
                             const std::vector<uint8_t>& fixed, const LiftFn& lift, const OptimizeOptions& o) {

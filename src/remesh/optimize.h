@@ -31,8 +31,9 @@ struct OptimizeStats {
   double meanMinAngleBefore = 0, meanMinAngleAfter = 0;  //!< degrees, 3D
 };
 
-//! Lift a planar point to the surface; false when it is not in the flattened patch.
-using LiftFn = std::function<bool(double x, double y, features::Vec3& out)>;
+//! Lift a planar point to the surface; false when it is not in the flattened patch. v: the
+//! vertex being moved there (lets the lift start its point location where v's last lift landed).
+using LiftFn = std::function<bool(uint32_t v, double x, double y, features::Vec3& out)>;
 
 //! Optimize in place. xy: 2 per vertex (planar); triangles: 3 per triangle, counter-clockwise
 //! in the plane; pos: 3D position per vertex (pos[v] must be the lift of xy[v]); fixed[v]: the
@@ -42,5 +43,10 @@ OptimizeStats optimizePatch(std::vector<double>& xy, std::vector<uint32_t>& tria
 
 //! Smallest angle of the 3D triangle (a, b, c), in degrees.
 double minAngleDeg3(const features::Vec3& a, const features::Vec3& b, const features::Vec3& c);
+
+//! minAngleDeg3 without atan2, within 1e-4 degrees of it (a polynomial arctangent); NaN for a
+//! triangle whose smallest corner is degenerate. The optimizer uses it only to skip exact
+//! evaluations whose outcome it already knows.
+double minAngleDeg3Approx(const features::Vec3& a, const features::Vec3& b, const features::Vec3& c);
 
 }  // namespace conformesh::optimization

@@ -74,6 +74,7 @@ struct PatchWork {
   // latest meshing
   std::vector<uint32_t> localToGlobal;  // planar vertex -> output vertex (samples first)
   std::vector<F::Vec3> interiorPositions;  // positions of planar vertices that are interior
+  std::vector<int> layoutFaces;             // per planar vertex: the flattened face of its lift, -1 none
   std::vector<uint32_t> triangles;         // planar triangles (local indices)
   std::vector<double> planarPoints;        // planar positions of the latest meshing
   uint64_t builtAt = 0;
@@ -112,7 +113,7 @@ class Pipeline {
   std::vector<BoundaryPoint> boundaryPoints(const PatchWork& w) const;
   void meshPatch(uint32_t p, bool splitSegments = true);
   void optimizeMesh(uint32_t p);
-  bool liftPoint(const PatchWork& w, double x, double y, PullbackPoint& q) const;
+  bool liftPoint(const PatchWork& w, double x, double y, PullbackPoint& q, int hintFace = -1) const;
   std::vector<Piece> stretch(const PatchWork& w, const BoundaryPoint& p0, const BoundaryPoint& p1, size_t points) const;
   uint32_t addSplitSample(const PatchWork& w, const std::vector<BoundaryPoint>& bp, uint32_t s, double t);
   double curveKey(uint32_t c, uint32_t sample) const;
@@ -531,9 +532,10 @@ std::vector<uint32_t> crossingSegments(const planar::Pslg& pslg) {
 // flattened boundary (between curve samples), so a refinement vertex near a concave stretch of
 // boundary can lie just outside the flattened patch: it is lifted from the nearest point of the
 // flattened boundary polyline instead (on the input's boundary curve, within the chord's sagitta).
-bool Pipeline::liftPoint(const PatchWork& w, double x, double y, PullbackPoint& q) const {
+// hintFace: a face of the final layout near (x, y) to start the point location from (-1: none).
+bool Pipeline::liftPoint(const PatchWork& w, double x, double y, PullbackPoint& q, int hintFace) const {
   const Pullback& pb = w.flat.pullback;
-  if (pb.locate(x, y, q, 1e-9)) return true;
+  if (pb.locate(x, y, hintFace, q, 1e-9)) return true;
   const auto& loop = w.pm.boundaryLoops[0];
   const auto& uv = w.flat.uv;
   double best = INFINITY, bx = x, by = y;
@@ -643,6 +645,7 @@ void Pipeline::meshPatch(uint32_t p, bool splitSegments) {
   const size_t nv = pmsh.vertexCount();
   w.localToGlobal.assign(nv, kNone);
   w.interiorPositions.assign(nv, F::Vec3{});
+  w.layoutFaces.assign(nv, -1);
   std::vector<uint8_t> onBoundary(nv, 0);
   {
     std::unordered_map<uint64_t, int> cnt;
@@ -673,6 +676,7 @@ void Pipeline::meshPatch(uint32_t p, bool splitSegments) {
     if (!liftPoint(w, pmsh.points[2 * v], pmsh.points[2 * v + 1], q))
       fail(Code::NumericalFailure, Stage::Lift, "a refinement vertex lies outside the flattened patch");
     w.interiorPositions[v] = {q.position[0], q.position[1], q.position[2]};
+    w.layoutFaces[v] = q.layoutFace;
   }
   w.triangles = pmsh.triangles;
   w.planarPoints = pmsh.points;
@@ -696,9 +700,11 @@ void Pipeline::optimizeMesh(uint32_t p) {
   oo.minAngleDeg = opt_.minAngleDeg;
   oo.maxIterations = opt_.optimizeIterations;
   oo.tolerance = opt_.optimizeTolerance;
-  auto lift = [&](double x, double y, F::Vec3& out) {
+  // per vertex: the layout face its latest lift landed in, where the next one starts looking
+  auto lift = [&](uint32_t v, double x, double y, F::Vec3& out) {
     PullbackPoint q;
-    if (!liftPoint(w, x, y, q)) return false;
+    if (!liftPoint(w, x, y, q, w.layoutFaces[v])) return false;
+    w.layoutFaces[v] = q.layoutFace;
     out = {q.position[0], q.position[1], q.position[2]};
     return true;
   };

@@ -70,7 +70,7 @@ void checkOptimize(const std::function<Vec3(double, double)>& surface, const cha
   before /= double(g.tri.size() / 3);
   optimization::OptimizeOptions o;
   o.minAngleDeg = 20;
-  auto lift = [&](double x, double y, Vec3& out) {
+  auto lift = [&](uint32_t, double x, double y, Vec3& out) {
     if (x < 0 || y < 0 || x > 1 || y > 1) return false;
     out = surface(x, y);
     return true;
@@ -123,8 +123,29 @@ TEST_CASE("optimize: zero passes change nothing") {
   const auto tri0 = g.tri;
   optimization::OptimizeOptions o;
   o.maxIterations = 0;
-  auto st = optimization::optimizePatch(g.xy, g.tri, pos, g.fixed, [](double, double, Vec3&) { return false; }, o);
+  auto st = optimization::optimizePatch(g.xy, g.tri, pos, g.fixed, [](uint32_t, double, double, Vec3&) { return false; }, o);
   CHECK(st.moves == 0);
   CHECK(g.xy == xy0);
   CHECK(g.tri == tri0);
+}
+
+TEST_CASE("optimize: the approximate min angle is within its 1e-4 degree bound (needles, obtuse, right, equilateral)") {
+  std::mt19937 rng(11);
+  std::uniform_real_distribution<double> u(-1, 1);
+  double worst = 0;
+  auto check = [&](const Vec3& a, const Vec3& b, const Vec3& c) {
+    const double exact = optimization::minAngleDeg3(a, b, c), approx = optimization::minAngleDeg3Approx(a, b, c);
+    worst = std::max(worst, std::abs(exact - approx));
+  };
+  for (int i = 0; i < 100000; ++i) {
+    const Vec3 a{u(rng), u(rng), u(rng)}, b{u(rng), u(rng), u(rng)};
+    // the third corner anywhere, or close to the line ab (needles and flat obtuse triangles)
+    const double t = 2 * u(rng), h = std::pow(10.0, -8 * std::abs(u(rng)));
+    const Vec3 c = i % 2 ? Vec3{u(rng), u(rng), u(rng)} : a + (b - a) * t + Vec3{u(rng), u(rng), u(rng)} * h;
+    check(a, b, c);
+  }
+  check({0, 0, 0}, {1, 0, 0}, {0, 1, 0});                    // 45 degrees: the switch of the arctangent branch
+  check({0, 0, 0}, {1, 0, 0}, {0.5, std::sqrt(0.75), 0});    // 60 degrees
+  MESSAGE("worst |approx - exact|: " << worst << " degrees");
+  CHECK(worst < 1e-5);  // the optimizer assumes 1e-4
 }
