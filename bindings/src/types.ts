@@ -285,8 +285,8 @@ export interface RemeshOptions {
   featureAngle?: number;
   /** Turning angle of a feature curve that makes a corner; default 50. */
   cornerTurn?: number;
-  /** Chains of sharp edges shorter than this in all are not features (absolute; < 0 or
-   *  absent: twice the target edge length; 0: keep every sharp edge). */
+  /** Chains of sharp edges shorter than this in all, none of them at 60° or more, are not
+   *  features (absolute; < 0 or absent: twice the target edge length; 0: keep every sharp edge). */
   minFeatureLength?: number;
   /** A patch whose scale factor ratio exceeds this is split; default 50. */
   maxScaleRatio?: number;

@@ -628,8 +628,8 @@ Segmentation segment(const EdgeGraph& g, const FeatureOptions& options, const Pr
     }
   }
   if (options.minFeatureLength > 0) {
-    // Connected chains of sharp edges shorter than minFeatureLength in all are noise (a scan's
-    // bumps), or a feature no output edge could follow: they are not features.
+    // Connected chains of sharp edges shorter than minFeatureLength in all, none of whose edges
+    // is as sharp as minFeatureKeepDeg, are noise (a scan's bumps): they are not features.
     std::vector<uint32_t> parent(g.vertexCount);
     for (uint32_t v = 0; v < g.vertexCount; ++v) parent[v] = v;
     auto find = [&](uint32_t v) {
@@ -638,11 +638,16 @@ Segmentation segment(const EdgeGraph& g, const FeatureOptions& options, const Pr
     };
     for (uint32_t e = 0; e < g.edgeCount(); ++e)
       if (seg.edgeKind[e] == EdgeKind::Feature) parent[find(g.edgeVerts[e][0])] = find(g.edgeVerts[e][1]);
-    std::vector<double> length(g.vertexCount, 0.0);
+    std::vector<double> length(g.vertexCount, 0.0), minDot(g.vertexCount, 1.0);
     for (uint32_t e = 0; e < g.edgeCount(); ++e)
-      if (seg.edgeKind[e] == EdgeKind::Feature) length[find(g.edgeVerts[e][0])] += g.edgeLength(e);
+      if (seg.edgeKind[e] == EdgeKind::Feature) {
+        const uint32_t r = find(g.edgeVerts[e][0]);
+        length[r] += g.edgeLength(e);
+        minDot[r] = std::min(minDot[r], dot(g.faceNormal(g.edgeFaces[e][0]), g.faceNormal(g.edgeFaces[e][1])));
+      }
+    const double keepDot = std::cos(options.minFeatureKeepDeg * kPi / 180.0);
     for (uint32_t e = 0; e < g.edgeCount(); ++e)
-      if (seg.edgeKind[e] == EdgeKind::Feature && length[find(g.edgeVerts[e][0])] < options.minFeatureLength) {
+      if (seg.edgeKind[e] == EdgeKind::Feature && length[find(g.edgeVerts[e][0])] < options.minFeatureLength && minDot[find(g.edgeVerts[e][0])] > keepDot) {
         seg.edgeKind[e] = EdgeKind::None;
         --seg.sharpEdgeCount;
         ++seg.droppedFeatureEdges;

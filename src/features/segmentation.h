@@ -23,9 +23,11 @@ struct FeatureOptions {
   //! A vertex inside a curve becomes a corner when the polyline turns by more than this (degrees).
   double cornerTurnDeg = 50.0;
   //! Chains of sharp edges (connected through shared vertices) whose total length is below this
-  //! are dropped: noise of a scanned surface, or features no output edge could follow. 0 keeps
-  //! every sharp edge. User feature edges are never dropped.
+  //! are dropped, unless one of their edges has a dihedral angle of minFeatureKeepDeg or more:
+  //! the noise of a scanned surface. 0 keeps every sharp edge. User feature edges are never
+  //! dropped.
   double minFeatureLength = 0.0;
+  double minFeatureKeepDeg = 60.0;
   //! User feature edges as vertex pairs (need not be sharp). A pair that is not an edge is an
   //! InvalidArgument error.
   std::vector<std::array<uint32_t, 2>> featureEdges;

@@ -41,9 +41,10 @@ struct RemeshOptions {
   double featureAngleDeg = 40.0;
   //! A feature curve turning by more than this at a vertex gets a corner there (degrees).
   double cornerTurnDeg = 50.0;
-  //! Chains of sharp edges (connected through shared vertices) shorter than this in all are not
-  //! features (absolute; < 0: twice the target edge length; 0: keep every sharp edge). User
-  //! feature edges are always kept. The report counts the dropped edges.
+  //! Chains of sharp edges (connected through shared vertices) shorter than this in all, none of
+  //! whose edges has a dihedral angle of 60° or more, are not features: a scan's noise (absolute;
+  //! < 0: twice the target edge length; 0: keep every sharp edge). User feature edges are always
+  //! kept. The report counts the dropped edges.
   double minFeatureLength = -1.0;
   //! User feature edges (input vertex pairs).
   std::vector<std::array<uint32_t, 2>> featureEdges;

@@ -234,7 +234,7 @@ TEST_CASE("features: improveCutJunctions opens up cuts that meet other curves at
   CHECK(s1.reroutedCutEnds > 0);
 }
 
-TEST_CASE("features: minFeatureLength drops chains of sharp edges shorter than it, never user feature edges") {
+TEST_CASE("features: minFeatureLength drops chains of sharp edges shorter than it, never user feature edges nor chains with an edge at minFeatureKeepDeg") {
   EdgeGraph g = buildEdgeGraph(testshapes::cube(4));  // one network of sharp edges, 12 long in all
   FeatureOptions keep;
   keep.minFeatureLength = 11.9;
@@ -242,8 +242,12 @@ TEST_CASE("features: minFeatureLength drops chains of sharp edges shorter than i
   CHECK(s.sharpEdgeCount == 48);
   CHECK(s.droppedFeatureEdges == 0);
   CHECK(s.curves.size() == 12);
+  FeatureOptions sharp;  // the cube's edges are at 90°: kept by default (minFeatureKeepDeg 60)
+  sharp.minFeatureLength = 12.1;
+  CHECK(segment(g, sharp).sharpEdgeCount == 48);
   FeatureOptions drop;
   drop.minFeatureLength = 12.1;
+  drop.minFeatureKeepDeg = 91.0;
   // a user feature edge survives: one edge of the cube's network
   uint32_t ue = kNone;
   for (uint32_t e = 0; e < g.edgeCount() && ue == kNone; ++e)

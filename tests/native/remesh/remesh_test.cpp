@@ -123,7 +123,7 @@ TEST_CASE("remesh: shared/data models with the defaults (fandisk, 3holes, alliga
 // Measured 2026-11-28 with the target edge length at 0.95, 0.98, 1.02, 1.05 % of the diagonal:
 // spot 0–1, holes 0–1, fertility 2–5, stanford-bunny 0–2, mech-holes-shark 0–8, t13_data 0–5
 // triangles below the bound outside exempt corners. The counts move with last-bit differences,
-// so they are printed; every other property is asserted. camelhead.off (48 of 149k, ~6 s) is
+// so they are printed; every other property is asserted. camelhead.off (32–94 of ~200k, ~10 s) is
 // left to the benchmark.
 TEST_CASE("remesh: shared/data models whose bound is not yet met everywhere") {
   for (const char* name : {"spot.obj", "holes.off", "fertility.off", "stanford-bunny.obj", "mech-holes-shark.off", "t13_data.stl"}) {
