@@ -9,6 +9,7 @@
 #include "conformal/intrinsic_triangulation.h"
 #include "conformal/layout.h"
 #include "conformal/triangle_geometry.h"
+#include "core/detmath.h"
 
 namespace conformesh {
 
@@ -41,7 +42,7 @@ void distortion(const MeshBuffers& M, const std::vector<double>& uv, FlattenRepo
     const double a = u1 / l1, cc = v1 / l1;
     const double b = (u2 - a * x2) / y2, d = (v2 - cc * x2) / y2;
     const double E = 0.5 * (a + d), F = 0.5 * (a - d), G = 0.5 * (cc + b), H = 0.5 * (cc - b);
-    const double Q = std::hypot(E, H), Rr = std::hypot(F, G);
+    const double Q = dmath::hypot(E, H), Rr = dmath::hypot(F, G);
     if (a * d - b * cc <= 0) ++R.inputTrianglesInvertedInUv;
     const double s2 = std::fabs(Q - Rr);
     const double ratio = s2 > 0 ? (Q + Rr) / s2 : 1e300;
@@ -67,7 +68,7 @@ std::vector<std::pair<uint32_t, double>> detectCorners(const MeshBuffers& patch,
   double best = -1;
   for (size_t k = 0; k < T.loops.size(); ++k) {
     double len = 0;
-    for (int e : T.loopEdges[k]) len += std::exp(0.5 * T.lambda[e]);
+    for (int e : T.loopEdges[k]) len += dmath::exp(0.5 * T.lambda[e]);
     if (len > best) {
       best = len;
       outer = k;
@@ -152,7 +153,7 @@ void balanceMobius(const conformal::IntrinsicTriangulation& T, const MeshBuffers
     const double* p1 = &patch.positions[3 * size_t(patch.triangles[3 * f + 1])];
     const double* p2 = &patch.positions[3 * size_t(patch.triangles[3 * f + 2])];
     const double e1[3] = {p1[0] - p0[0], p1[1] - p0[1], p1[2] - p0[2]}, e2[3] = {p2[0] - p0[0], p2[1] - p0[1], p2[2] - p0[2]};
-    const double A = 0.5 * std::hypot(e1[1] * e2[2] - e1[2] * e2[1], e1[2] * e2[0] - e1[0] * e2[2], e1[0] * e2[1] - e1[1] * e2[0]);
+    const double A = 0.5 * dmath::hypot(e1[1] * e2[2] - e1[2] * e2[1], e1[2] * e2[0] - e1[0] * e2[2], e1[0] * e2[1] - e1[1] * e2[0]);
     for (int k = 0; k < 3; ++k) w[patch.triangles[3 * f + k]] += A / 3;
   }
   std::vector<C> z(T.nV);
@@ -171,7 +172,7 @@ void balanceMobius(const conformal::IntrinsicTriangulation& T, const MeshBuffers
     const double s = 1 - std::norm(m);
     for (int v = 0; v < T.nV; ++v) {
       const C q = 1.0 - std::conj(m) * z[v];
-      du[v] += std::log(s) - 2 * std::log(std::abs(q));
+      du[v] += dmath::log(s) - 2 * dmath::log(std::abs(q));
       z[v] = (z[v] - m) / q;
     }
   }
@@ -183,9 +184,9 @@ void balanceMobius(const conformal::IntrinsicTriangulation& T, const MeshBuffers
     double lam[3], ang[3];
     for (int k = 0; k < 3; ++k) lam[k] = T.scaledLambda(3 * f + k, u2);
     conformal::anglesFromLogLengths(lam, ang);
-    a2 += 0.5 * std::exp(0.5 * (lam[1] + lam[2])) * std::sin(ang[0]);
+    a2 += 0.5 * dmath::exp(0.5 * (lam[1] + lam[2])) * dmath::sin(ang[0]);
   }
-  const double shift = 0.5 * std::log(a3 / a2);
+  const double shift = 0.5 * dmath::log(a3 / a2);
   if (!std::isfinite(shift)) return;
   for (double& x : u2) x += shift;
   conformal::LayoutResult L2 = conformal::layoutFlat(T, u2);
@@ -250,15 +251,15 @@ FlatPatch flattenCompact(const MeshBuffers& patch, const FlattenOptions& options
       const double* p2 = &patch.positions[3 * size_t(patch.triangles[3 * f + 2])];
       const double e1[3] = {p1[0] - p0[0], p1[1] - p0[1], p1[2] - p0[2]};
       const double e2[3] = {p2[0] - p0[0], p2[1] - p0[1], p2[2] - p0[2]};
-      a3 += 0.5 * std::hypot(e1[1] * e2[2] - e1[2] * e2[1], e1[2] * e2[0] - e1[0] * e2[2], e1[0] * e2[1] - e1[1] * e2[0]);
+      a3 += 0.5 * dmath::hypot(e1[1] * e2[2] - e1[2] * e2[1], e1[2] * e2[0] - e1[0] * e2[2], e1[0] * e2[1] - e1[1] * e2[0]);
     }
     for (int f = 0; f < T.nF; ++f) {
       double lam[3], ang[3];
       for (int k = 0; k < 3; ++k) lam[k] = T.scaledLambda(3 * f + k, u);
       anglesFromLogLengths(lam, ang);
-      a2 += 0.5 * std::exp(0.5 * (lam[1] + lam[2])) * std::sin(ang[0]);  // angle 0 lies between edges 1, 2
+      a2 += 0.5 * dmath::exp(0.5 * (lam[1] + lam[2])) * dmath::sin(ang[0]);  // angle 0 lies between edges 1, 2
     }
-    const double c = 0.5 * std::log(a3 / a2);
+    const double c = 0.5 * dmath::log(a3 / a2);
     if (std::isfinite(c))
       for (double& x : u) x += c;
   }
@@ -303,9 +304,9 @@ FlatPatch flattenCompact(const MeshBuffers& patch, const FlattenOptions& options
     umin = std::min(umin, x);
     umax = std::max(umax, x);
   }
-  R.areaDistortionMin = std::exp(2 * umin);
-  R.areaDistortionMax = std::exp(2 * umax);
-  R.areaDistortionRange = std::exp(2 * (umax - umin));
+  R.areaDistortionMin = dmath::exp(2 * umin);
+  R.areaDistortionMax = dmath::exp(2 * umax);
+  R.areaDistortionRange = dmath::exp(2 * (umax - umin));
   distortion(patch, out.uv, R);
   if (progress && !progress(Stage::Flatten, 0.9)) fail(Code::Cancelled, Stage::Flatten, "flatten: cancelled");
 
