@@ -133,9 +133,22 @@ namespace {
 // interiors stay inside, so the triangulation stays Delaunay and u changes by log |f'|). Pick
 // the member whose 3D-area-weighted vertex centroid is the disk's centre (least distortion in
 // practice), then restore the 3D area and lay out again.
+// Complex |z|², |z|, z·w and z/w written out: the standard libraries round them differently
+// (libstdc++'s std::norm squares cabs = glibc hypot, and its division is GCC's __divdc3; libc++
+// sums squares, calls musl's hypot and scales by logb/scalbn), so native and WASM would differ.
+using C = std::complex<double>;
+inline double cnorm(const C& z) { return z.real() * z.real() + z.imag() * z.imag(); }
+inline double cabs(const C& z) { return dmath::hypot(z.real(), z.imag()); }
+inline C cmul(const C& z, const C& w) {
+  return C(z.real() * w.real() - z.imag() * w.imag(), z.real() * w.imag() + z.imag() * w.real());
+}
+inline C cdiv(const C& z, const C& w) {
+  const double n = cnorm(w);
+  return C((z.real() * w.real() + z.imag() * w.imag()) / n, (z.imag() * w.real() - z.real() * w.imag()) / n);
+}
+
 void balanceMobius(const conformal::IntrinsicTriangulation& T, const MeshBuffers& patch, int outerLoop,
                    conformal::LayoutResult& L, std::vector<double>& u) {
-  using C = std::complex<double>;
   const auto& loop = T.loops[outerLoop];
   const size_t n = loop.size();
   if (n < 3) return;
@@ -144,9 +157,9 @@ void balanceMobius(const conformal::IntrinsicTriangulation& T, const MeshBuffers
   const C ba = b - a, ca = c - a;
   const double d = 2 * (ba.real() * ca.imag() - ba.imag() * ca.real());
   if (!(std::fabs(d) > 0)) return;
-  const C centre = a + C((ca.imag() * std::norm(ba) - ba.imag() * std::norm(ca)) / d,
-                         (ba.real() * std::norm(ca) - ca.real() * std::norm(ba)) / d);
-  const double R = std::abs(a - centre);
+  const C centre = a + C((ca.imag() * cnorm(ba) - ba.imag() * cnorm(ca)) / d,
+                         (ba.real() * cnorm(ca) - ca.real() * cnorm(ba)) / d);
+  const double R = cabs(a - centre);
   std::vector<double> w(T.nV, 0.0);
   for (size_t f = 0; f < patch.triangleCount(); ++f) {
     const double* p0 = &patch.positions[3 * size_t(patch.triangles[3 * f])];
@@ -167,13 +180,13 @@ void balanceMobius(const conformal::IntrinsicTriangulation& T, const MeshBuffers
       W += w[v];
     }
     m /= W;
-    if (std::abs(m) < 1e-10) break;
-    if (std::abs(m) > 0.5) m *= 0.5 / std::abs(m);
-    const double s = 1 - std::norm(m);
+    if (cabs(m) < 1e-10) break;
+    if (cabs(m) > 0.5) m *= 0.5 / cabs(m);
+    const double s = 1 - cnorm(m);
     for (int v = 0; v < T.nV; ++v) {
-      const C q = 1.0 - std::conj(m) * z[v];
-      du[v] += dmath::log(s) - 2 * dmath::log(std::abs(q));
-      z[v] = (z[v] - m) / q;
+      const C q = 1.0 - cmul(std::conj(m), z[v]);
+      du[v] += dmath::log(s) - 2 * dmath::log(cabs(q));
+      z[v] = cdiv(z[v] - m, q);
     }
   }
   std::vector<double> u2 = u;

@@ -177,7 +177,7 @@ OverlayMap buildOverlayMap(const IT& src, const IT& T, OverlayGeometry geo) {
     for (int h = 0; h < 3 * nF; ++h) fan[fill[T.vert[h]]++] = h;
     for (int v = 0; v < T.nV; ++v)
       std::sort(fan.begin() + fanStart[v], fan.begin() + fanStart[v + 1],
-                [&](int a, int b) { return T.horoPos[a] < T.horoPos[b]; });
+                [&](int a, int b) { return T.horoPos[a] != T.horoPos[b] ? T.horoPos[a] < T.horoPos[b] : a < b; });
   }
   // Target edges that are source edges (never flipped, or flipped back onto the same curve).
   std::vector<int> sourceOfTarget(T.nE, -1);
