@@ -9,6 +9,7 @@
 #include "conformal/intrinsic_triangulation.h"
 #include "conformal/layout.h"
 #include "conformal/triangle_geometry.h"
+#include "core/detmath.h"
 
 namespace conformesh {
 
@@ -41,7 +42,7 @@ void distortion(const MeshBuffers& M, const std::vector<double>& uv, FlattenRepo
     const double a = u1 / l1, cc = v1 / l1;
     const double b = (u2 - a * x2) / y2, d = (v2 - cc * x2) / y2;
     const double E = 0.5 * (a + d), F = 0.5 * (a - d), G = 0.5 * (cc + b), H = 0.5 * (cc - b);
-    const double Q = std::hypot(E, H), Rr = std::hypot(F, G);
+    const double Q = dmath::hypot(E, H), Rr = dmath::hypot(F, G);
     if (a * d - b * cc <= 0) ++R.inputTrianglesInvertedInUv;
     const double s2 = std::fabs(Q - Rr);
     const double ratio = s2 > 0 ? (Q + Rr) / s2 : 1e300;
@@ -67,7 +68,7 @@ std::vector<std::pair<uint32_t, double>> detectCorners(const MeshBuffers& patch,
   double best = -1;
   for (size_t k = 0; k < T.loops.size(); ++k) {
     double len = 0;
-    for (int e : T.loopEdges[k]) len += std::exp(0.5 * T.lambda[e]);
+    for (int e : T.loopEdges[k]) len += dmath::exp(0.5 * T.lambda[e]);
     if (len > best) {
       best = len;
       outer = k;
@@ -132,9 +133,22 @@ namespace {
 // interiors stay inside, so the triangulation stays Delaunay and u changes by log |f'|). Pick
 // the member whose 3D-area-weighted vertex centroid is the disk's centre (least distortion in
 // practice), then restore the 3D area and lay out again.
+// Complex |z|², |z|, z·w and z/w written out: the standard libraries round them differently
+// (libstdc++'s std::norm squares cabs = glibc hypot, and its division is GCC's __divdc3; libc++
+// sums squares, calls musl's hypot and scales by logb/scalbn), so native and WASM would differ.
+using C = std::complex<double>;
+inline double cnorm(const C& z) { return z.real() * z.real() + z.imag() * z.imag(); }
+inline double cabs(const C& z) { return dmath::hypot(z.real(), z.imag()); }
+inline C cmul(const C& z, const C& w) {
+  return C(z.real() * w.real() - z.imag() * w.imag(), z.real() * w.imag() + z.imag() * w.real());
+}
+inline C cdiv(const C& z, const C& w) {
+  const double n = cnorm(w);
+  return C((z.real() * w.real() + z.imag() * w.imag()) / n, (z.imag() * w.real() - z.real() * w.imag()) / n);
+}
+
 void balanceMobius(const conformal::IntrinsicTriangulation& T, const MeshBuffers& patch, int outerLoop,
                    conformal::LayoutResult& L, std::vector<double>& u) {
-  using C = std::complex<double>;
   const auto& loop = T.loops[outerLoop];
   const size_t n = loop.size();
   if (n < 3) return;
@@ -143,16 +157,16 @@ void balanceMobius(const conformal::IntrinsicTriangulation& T, const MeshBuffers
   const C ba = b - a, ca = c - a;
   const double d = 2 * (ba.real() * ca.imag() - ba.imag() * ca.real());
   if (!(std::fabs(d) > 0)) return;
-  const C centre = a + C((ca.imag() * std::norm(ba) - ba.imag() * std::norm(ca)) / d,
-                         (ba.real() * std::norm(ca) - ca.real() * std::norm(ba)) / d);
-  const double R = std::abs(a - centre);
+  const C centre = a + C((ca.imag() * cnorm(ba) - ba.imag() * cnorm(ca)) / d,
+                         (ba.real() * cnorm(ca) - ca.real() * cnorm(ba)) / d);
+  const double R = cabs(a - centre);
   std::vector<double> w(T.nV, 0.0);
   for (size_t f = 0; f < patch.triangleCount(); ++f) {
     const double* p0 = &patch.positions[3 * size_t(patch.triangles[3 * f])];
     const double* p1 = &patch.positions[3 * size_t(patch.triangles[3 * f + 1])];
     const double* p2 = &patch.positions[3 * size_t(patch.triangles[3 * f + 2])];
     const double e1[3] = {p1[0] - p0[0], p1[1] - p0[1], p1[2] - p0[2]}, e2[3] = {p2[0] - p0[0], p2[1] - p0[1], p2[2] - p0[2]};
-    const double A = 0.5 * std::hypot(e1[1] * e2[2] - e1[2] * e2[1], e1[2] * e2[0] - e1[0] * e2[2], e1[0] * e2[1] - e1[1] * e2[0]);
+    const double A = 0.5 * dmath::hypot(e1[1] * e2[2] - e1[2] * e2[1], e1[2] * e2[0] - e1[0] * e2[2], e1[0] * e2[1] - e1[1] * e2[0]);
     for (int k = 0; k < 3; ++k) w[patch.triangles[3 * f + k]] += A / 3;
   }
   std::vector<C> z(T.nV);
@@ -166,13 +180,13 @@ void balanceMobius(const conformal::IntrinsicTriangulation& T, const MeshBuffers
       W += w[v];
     }
     m /= W;
-    if (std::abs(m) < 1e-10) break;
-    if (std::abs(m) > 0.5) m *= 0.5 / std::abs(m);
-    const double s = 1 - std::norm(m);
+    if (cabs(m) < 1e-10) break;
+    if (cabs(m) > 0.5) m *= 0.5 / cabs(m);
+    const double s = 1 - cnorm(m);
     for (int v = 0; v < T.nV; ++v) {
-      const C q = 1.0 - std::conj(m) * z[v];
-      du[v] += std::log(s) - 2 * std::log(std::abs(q));
-      z[v] = (z[v] - m) / q;
+      const C q = 1.0 - cmul(std::conj(m), z[v]);
+      du[v] += dmath::log(s) - 2 * dmath::log(cabs(q));
+      z[v] = cdiv(z[v] - m, q);
     }
   }
   std::vector<double> u2 = u;
@@ -183,9 +197,9 @@ void balanceMobius(const conformal::IntrinsicTriangulation& T, const MeshBuffers
     double lam[3], ang[3];
     for (int k = 0; k < 3; ++k) lam[k] = T.scaledLambda(3 * f + k, u2);
     conformal::anglesFromLogLengths(lam, ang);
-    a2 += 0.5 * std::exp(0.5 * (lam[1] + lam[2])) * std::sin(ang[0]);
+    a2 += 0.5 * dmath::exp(0.5 * (lam[1] + lam[2])) * dmath::sin(ang[0]);
   }
-  const double shift = 0.5 * std::log(a3 / a2);
+  const double shift = 0.5 * dmath::log(a3 / a2);
   if (!std::isfinite(shift)) return;
   for (double& x : u2) x += shift;
   conformal::LayoutResult L2 = conformal::layoutFlat(T, u2);
@@ -250,15 +264,15 @@ FlatPatch flattenCompact(const MeshBuffers& patch, const FlattenOptions& options
       const double* p2 = &patch.positions[3 * size_t(patch.triangles[3 * f + 2])];
       const double e1[3] = {p1[0] - p0[0], p1[1] - p0[1], p1[2] - p0[2]};
       const double e2[3] = {p2[0] - p0[0], p2[1] - p0[1], p2[2] - p0[2]};
-      a3 += 0.5 * std::hypot(e1[1] * e2[2] - e1[2] * e2[1], e1[2] * e2[0] - e1[0] * e2[2], e1[0] * e2[1] - e1[1] * e2[0]);
+      a3 += 0.5 * dmath::hypot(e1[1] * e2[2] - e1[2] * e2[1], e1[2] * e2[0] - e1[0] * e2[2], e1[0] * e2[1] - e1[1] * e2[0]);
     }
     for (int f = 0; f < T.nF; ++f) {
       double lam[3], ang[3];
       for (int k = 0; k < 3; ++k) lam[k] = T.scaledLambda(3 * f + k, u);
       anglesFromLogLengths(lam, ang);
-      a2 += 0.5 * std::exp(0.5 * (lam[1] + lam[2])) * std::sin(ang[0]);  // angle 0 lies between edges 1, 2
+      a2 += 0.5 * dmath::exp(0.5 * (lam[1] + lam[2])) * dmath::sin(ang[0]);  // angle 0 lies between edges 1, 2
     }
-    const double c = 0.5 * std::log(a3 / a2);
+    const double c = 0.5 * dmath::log(a3 / a2);
     if (std::isfinite(c))
       for (double& x : u) x += c;
   }
@@ -303,9 +317,9 @@ FlatPatch flattenCompact(const MeshBuffers& patch, const FlattenOptions& options
     umin = std::min(umin, x);
     umax = std::max(umax, x);
   }
-  R.areaDistortionMin = std::exp(2 * umin);
-  R.areaDistortionMax = std::exp(2 * umax);
-  R.areaDistortionRange = std::exp(2 * (umax - umin));
+  R.areaDistortionMin = dmath::exp(2 * umin);
+  R.areaDistortionMax = dmath::exp(2 * umax);
+  R.areaDistortionRange = dmath::exp(2 * (umax - umin));
   distortion(patch, out.uv, R);
   if (progress && !progress(Stage::Flatten, 0.9)) fail(Code::Cancelled, Stage::Flatten, "flatten: cancelled");
 

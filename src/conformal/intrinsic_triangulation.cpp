@@ -5,6 +5,7 @@
 #include <string>
 
 #include "conformal/triangle_geometry.h"
+#include "core/detmath.h"
 
 namespace conformesh::conformal {
 
@@ -24,7 +25,7 @@ bool IntrinsicTriangulation::canFlip(int e) const {
 
 double IntrinsicTriangulation::cornerSize(int g) const {
   if (positionKind == PositionKind::Horocyclic)
-    return std::exp(0.5 * (lambda[edge[next(g)]] - lambda[edge[g]] - lambda[edge[prev(g)]]));
+    return dmath::exp(0.5 * (lambda[edge[next(g)]] - lambda[edge[g]] - lambda[edge[prev(g)]]));
   const int f = g / 3;
   double lam[3] = {lambda[edge[3 * f]], lambda[edge[3 * f + 1]], lambda[edge[3 * f + 2]]};
   double ang[3];
@@ -67,11 +68,11 @@ void IntrinsicTriangulation::flipEuclidean(int e) {
   anglesFromLogLengths(lamG, angG);
   const double thA1 = angF[h1 % 3];  // at a in F, opposite b->c
   const double thA2 = angG[t2 % 3];  // at a in G, opposite d->b
-  const double lac = std::exp(0.5 * lambda[edge[h2]]), lad = std::exp(0.5 * lambda[edge[t1]]);
-  const double cx = lac * std::cos(thA1), cy = lac * std::sin(thA1);
-  const double dx = lad * std::cos(thA2), dy = -lad * std::sin(thA2);
+  const double lac = dmath::exp(0.5 * lambda[edge[h2]]), lad = dmath::exp(0.5 * lambda[edge[t1]]);
+  const double cx = lac * dmath::cos(thA1), cy = lac * dmath::sin(thA1);
+  const double dx = lad * dmath::cos(thA2), dy = -lad * dmath::sin(thA2);
   const double l2 = (cx - dx) * (cx - dx) + (cy - dy) * (cy - dy);
-  flipWithLambda(e, std::log(l2));
+  flipWithLambda(e, dmath::log(l2));
 }
 
 void IntrinsicTriangulation::flip(int e) {
@@ -85,7 +86,7 @@ void IntrinsicTriangulation::flip(int e) {
   // Ptolemy in log form: lam_cd = 2 log(l_ac l_bd + l_ad l_bc) - lam_ab.
   const double x = 0.5 * (lac + lbd), y = 0.5 * (lad + lbc);
   const double mx = std::max(x, y);
-  flipWithLambda(e, 2.0 * (mx + std::log1p(std::exp(-std::fabs(x - y)))) - lab);
+  flipWithLambda(e, 2.0 * (mx + dmath::log1p(dmath::exp(-std::fabs(x - y)))) - lab);
 }
 
 void IntrinsicTriangulation::flipWithLambda(int e, double lcd) {
@@ -214,7 +215,7 @@ IntrinsicTriangulation buildIntrinsicTriangulation(const MeshBuffers& mesh) {
     const double dx = P[3 * a] - P[3 * b], dy = P[3 * a + 1] - P[3 * b + 1], dz = P[3 * a + 2] - P[3 * b + 2];
     const double l2 = dx * dx + dy * dy + dz * dz;
     if (!(l2 > 0.0)) reject(Code::DegenerateFace, "flatten: zero-length edge between vertices " + std::to_string(a) + " and " + std::to_string(b));
-    T.lambda[e] = std::log(l2);
+    T.lambda[e] = dmath::log(l2);
   }
   for (int f = 0; f < T.nF; ++f) {
     double lam[3] = {T.lambda[T.edge[3 * f]], T.lambda[T.edge[3 * f + 1]], T.lambda[T.edge[3 * f + 2]]};

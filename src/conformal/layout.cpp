@@ -8,6 +8,7 @@
 
 #include "conformal/triangle_geometry.h"
 #include "planar/predicates.h"
+#include "core/detmath.h"
 
 namespace conformesh::conformal {
 
@@ -101,8 +102,8 @@ std::string scaleDiagnosis(const IT& T, const std::vector<double>& u, BoundaryCo
     double lam[3], ang[3];
     for (int k = 0; k < 3; ++k) lam[k] = T.scaledLambda(3 * f + k, u);
     anglesFromLogLengths(lam, ang);
-    area += 0.5 * std::exp(0.5 * (lam[1] + lam[2])) * std::sin(ang[0]);  // angle 0 lies between edges 1, 2
-    for (int k = 0; k < 3; ++k) minEdge = std::min(minEdge, std::exp(0.5 * lam[k]));
+    area += 0.5 * dmath::exp(0.5 * (lam[1] + lam[2])) * dmath::sin(ang[0]);  // angle 0 lies between edges 1, 2
+    for (int k = 0; k < 3; ++k) minEdge = std::min(minEdge, dmath::exp(0.5 * lam[k]));
   }
   const double ratio = minEdge / std::sqrt(area);
   if (ratio >= kMinRelativeEdgeLength) return "";
@@ -115,7 +116,7 @@ std::string scaleDiagnosis(const IT& T, const std::vector<double>& u, BoundaryCo
   std::snprintf(buf, sizeof buf,
                 "the %s map scales areas by factors e^{2u} spanning %.1e; its shortest edge is %.1e times the domain "
                 "size, beyond what double-precision coordinates resolve away from the layout's origin: %s",
-                boundaryName(boundary), std::exp(2.0 * (umax - umin)), ratio,
+                boundaryName(boundary), dmath::exp(2.0 * (umax - umin)), ratio,
                 boundary == BoundaryCondition::Free ? "split the patch where it narrows" : "use the free boundary (u = 0), or split the patch where it narrows");
   return buf;
 }
@@ -124,7 +125,7 @@ LayoutResult layoutFlat(const IT& T, const std::vector<double>& u) {
   LayoutResult R;
   R.xy.assign(2 * size_t(T.nV), 0.0);
   std::vector<char> placed(T.nV, 0), visited(T.nF, 0);
-  auto len = [&](int h) { return std::exp(0.5 * T.scaledLambda(h, u)); };
+  auto len = [&](int h) { return dmath::exp(0.5 * T.scaledLambda(h, u)); };
   // Place the vertex opposite halfedge h (whose endpoints are placed) in h's face.
   auto placeThird = [&](int h) {
     const int a = T.vert[h], b = T.tip(h), c = T.vert[IT::prev(h)];
@@ -135,9 +136,9 @@ LayoutResult layoutFlat(const IT& T, const std::vector<double>& u) {
     const double thetaA = ang[IT::next(h) % 3];  // angle at a, opposite b->c
     const double lca = len(IT::prev(h));
     const double dx = R.xy[2 * b] - R.xy[2 * a], dy = R.xy[2 * b + 1] - R.xy[2 * a + 1];
-    const double dl = std::hypot(dx, dy);
+    const double dl = dmath::hypot(dx, dy);
     const double ex = dx / dl, ey = dy / dl;
-    const double x = lca * std::cos(thetaA), y = lca * std::sin(thetaA);
+    const double x = lca * dmath::cos(thetaA), y = lca * dmath::sin(thetaA);
     R.xy[2 * c] = R.xy[2 * a] + x * ex - y * ey;
     R.xy[2 * c + 1] = R.xy[2 * a + 1] + x * ey + y * ex;
     placed[c] = 1;
@@ -170,7 +171,7 @@ LayoutResult layoutFlat(const IT& T, const std::vector<double>& u) {
   for (int e = 0; e < T.nE; ++e) {
     const int h = T.edgeHalf[e], a = T.vert[h], b = T.tip(h);
     const double l = len(h);
-    const double d = std::hypot(R.xy[2 * a] - R.xy[2 * b], R.xy[2 * a + 1] - R.xy[2 * b + 1]);
+    const double d = dmath::hypot(R.xy[2 * a] - R.xy[2 * b], R.xy[2 * a + 1] - R.xy[2 * b + 1]);
     R.maxEdgeLengthError = std::max(R.maxEdgeLengthError, std::fabs(d - l) / l);
   }
   std::vector<std::pair<int, int>> seg;

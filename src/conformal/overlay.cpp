@@ -6,6 +6,7 @@
 #include <string>
 
 #include "conformal/triangle_geometry.h"
+#include "core/detmath.h"
 
 namespace conformesh::conformal {
 
@@ -39,16 +40,16 @@ Unfold unfold(const IT& T, int hx, OverlayGeometry geo) {
   const double lab = T.lambda[T.edge[hx]], lbc = T.lambda[T.edge[IT::next(hx)]], lac = T.lambda[T.edge[IT::prev(hx)]];
   const double lad = T.lambda[T.edge[IT::next(tw)]], lbd = T.lambda[T.edge[IT::prev(tw)]];
   if (geo == OverlayGeometry::Hyperbolic) {
-    U.z = -std::exp(0.5 * (lad + lbd - lac - lbc));
-    U.x = std::exp(lbd - lab) + std::exp(0.5 * (lad + lbd + lbc - lac) - lab);
-    U.y = std::exp(lad - lab) + std::exp(0.5 * (lad + lbd + lac - lbc) - lab);
+    U.z = -dmath::exp(0.5 * (lad + lbd - lac - lbc));
+    U.x = dmath::exp(lbd - lab) + dmath::exp(0.5 * (lad + lbd + lbc - lac) - lab);
+    U.y = dmath::exp(lad - lab) + dmath::exp(0.5 * (lad + lbd + lac - lbc) - lab);
   } else {
     double lf[3] = {lab, lbc, lac}, lg[3] = {lab, lad, lbd}, af[3], ag[3];
     anglesFromLogLengths(lf, af);  // af[1]: angle at a (opposite b-c)
     anglesFromLogLengths(lg, ag);  // ag[2]: angle at a (opposite d-b)
-    const double Lab = std::exp(0.5 * lab), Lac = std::exp(0.5 * lac), Lad = std::exp(0.5 * lad);
-    const double cx = Lac * std::cos(af[1]), cy = Lac * std::sin(af[1]);
-    const double dx = Lad * std::cos(ag[2]), dy = -Lad * std::sin(ag[2]);
+    const double Lab = dmath::exp(0.5 * lab), Lac = dmath::exp(0.5 * lac), Lad = dmath::exp(0.5 * lad);
+    const double cx = Lac * dmath::cos(af[1]), cy = Lac * dmath::sin(af[1]);
+    const double dx = Lad * dmath::cos(ag[2]), dy = -Lad * dmath::sin(ag[2]);
     U.z = dy / cy;
     U.y = (dx - U.z * cx) / Lab;
     U.x = 1.0 - U.y - U.z;
@@ -113,12 +114,12 @@ struct Segment {
 // matrix whose columns (in the source face's slot order) are the coordinates of its vertices.
 void sourceFaceMatrix(const IT& src, const IT& dst, int t, int h, const Vec3& va, const Vec3& vb, OverlayGeometry geo,
                       double M[9]) {
-  const double Lab = std::exp(src.lambda[src.edge[h]]);
-  const double Lac = std::exp(src.lambda[src.edge[IT::prev(h)]]), Lbc = std::exp(src.lambda[src.edge[IT::next(h)]]);
+  const double Lab = dmath::exp(src.lambda[src.edge[h]]);
+  const double Lac = dmath::exp(src.lambda[src.edge[IT::prev(h)]]), Lbc = dmath::exp(src.lambda[src.edge[IT::next(h)]]);
   Vec3 vc;
   if (geo == OverlayGeometry::Hyperbolic) {
-    const double L01 = std::exp(dst.lambda[dst.edge[3 * t]]), L12 = std::exp(dst.lambda[dst.edge[3 * t + 1]]),
-                 L20 = std::exp(dst.lambda[dst.edge[3 * t + 2]]);
+    const double L01 = dmath::exp(dst.lambda[dst.edge[3 * t]]), L12 = dmath::exp(dst.lambda[dst.edge[3 * t + 1]]),
+                 L20 = dmath::exp(dst.lambda[dst.edge[3 * t + 2]]);
     const double G[9] = {0, -L01, -L20, -L01, 0, -L12, -L20, -L12, 0};
     double Gi[9];
     invert3(G, Gi);
@@ -136,8 +137,8 @@ void sourceFaceMatrix(const IT& src, const IT& dst, int t, int h, const Vec3& va
     double lt[3] = {dst.lambda[dst.edge[3 * t]], dst.lambda[dst.edge[3 * t + 1]], dst.lambda[dst.edge[3 * t + 2]]}, at[3];
     anglesFromLogLengths(lt, at);
     const double q[3][2] = {{0, 0},
-                            {std::exp(0.5 * lt[0]), 0},
-                            {std::exp(0.5 * lt[2]) * std::cos(at[1]), std::exp(0.5 * lt[2]) * std::sin(at[1])}};
+                            {dmath::exp(0.5 * lt[0]), 0},
+                            {dmath::exp(0.5 * lt[2]) * dmath::cos(at[1]), dmath::exp(0.5 * lt[2]) * dmath::sin(at[1])}};
     double pa[2] = {0, 0}, pb[2] = {0, 0};
     for (int s = 0; s < 3; ++s)
       for (int k = 0; k < 2; ++k) {
@@ -146,8 +147,8 @@ void sourceFaceMatrix(const IT& src, const IT& dst, int t, int h, const Vec3& va
       }
     double ls[3] = {src.lambda[src.edge[h]], src.lambda[src.edge[IT::next(h)]], src.lambda[src.edge[IT::prev(h)]]}, as[3];
     anglesFromLogLengths(ls, as);  // as[1]: angle at a (opposite b-c)
-    const double ex = pb[0] - pa[0], ey = pb[1] - pa[1], el = std::hypot(ex, ey);
-    const double cx = std::sqrt(Lac) * std::cos(as[1]), cy = std::sqrt(Lac) * std::sin(as[1]);
+    const double ex = pb[0] - pa[0], ey = pb[1] - pa[1], el = dmath::hypot(ex, ey);
+    const double cx = std::sqrt(Lac) * dmath::cos(as[1]), cy = std::sqrt(Lac) * dmath::sin(as[1]);
     const double pc[2] = {pa[0] + (cx * ex - cy * ey) / el, pa[1] + (cx * ey + cy * ex) / el};
     // Barycentric coordinates of pc in the target face.
     const double b2 = pc[1] / q[2][1];
@@ -176,7 +177,7 @@ OverlayMap buildOverlayMap(const IT& src, const IT& T, OverlayGeometry geo) {
     for (int h = 0; h < 3 * nF; ++h) fan[fill[T.vert[h]]++] = h;
     for (int v = 0; v < T.nV; ++v)
       std::sort(fan.begin() + fanStart[v], fan.begin() + fanStart[v + 1],
-                [&](int a, int b) { return T.horoPos[a] < T.horoPos[b]; });
+                [&](int a, int b) { return T.horoPos[a] != T.horoPos[b] ? T.horoPos[a] < T.horoPos[b] : a < b; });
   }
   // Target edges that are source edges (never flipped, or flipped back onto the same curve).
   std::vector<int> sourceOfTarget(T.nE, -1);
@@ -223,13 +224,13 @@ OverlayMap buildOverlayMap(const IT& src, const IT& T, OverlayGeometry geo) {
     // The curve from i hits edge y-z at e_y + r e_z.
     double r;
     if (geo == OverlayGeometry::Hyperbolic) {
-      r = f / (1 - f) * std::exp(T.lambda[T.edge[g]] - T.lambda[T.edge[IT::prev(g)]]);
+      r = f / (1 - f) * dmath::exp(T.lambda[T.edge[g]] - T.lambda[T.edge[IT::prev(g)]]);
     } else {
       double lam[3] = {T.lambda[T.edge[3 * (g / 3)]], T.lambda[T.edge[3 * (g / 3) + 1]], T.lambda[T.edge[3 * (g / 3) + 2]]}, ang[3];
       anglesFromLogLengths(lam, ang);
       const double thetaY = ang[IT::prev(g) % 3];  // at y, opposite z->i
       const double phi = f * corner;
-      const double t = std::exp(0.5 * (T.lambda[T.edge[g]] - T.lambda[T.edge[IT::next(g)]])) * std::sin(phi) / std::sin(phi + thetaY);
+      const double t = dmath::exp(0.5 * (T.lambda[T.edge[g]] - T.lambda[T.edge[IT::next(g)]])) * dmath::sin(phi) / dmath::sin(phi + thetaY);
       r = t / (1 - t);
       if (!(r >= 0) || !std::isfinite(r)) r = f / (1 - f);
     }
@@ -409,7 +410,7 @@ Pullback::Pullback(std::vector<double> inputPositions, std::vector<int> inputTri
   for (int t = 0; t < nF; ++t) {
     double umax = -1e300;
     for (int k = 0; k < 3; ++k) umax = std::max(umax, u[fTri_[3 * t + k]]);
-    for (int k = 0; k < 3; ++k) fScale_[3 * size_t(t) + k] = std::exp(u[fTri_[3 * t + k]] - umax);
+    for (int k = 0; k < 3; ++k) fScale_[3 * size_t(t) + k] = dmath::exp(u[fTri_[3 * t + k]] - umax);
   }
   // Face adjacency for the walk: corners sorted by their opposite edge; an edge with exactly two
   // corners joins two faces.

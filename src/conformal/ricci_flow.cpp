@@ -10,6 +10,7 @@
 
 #include "conformal/layout.h"
 #include "conformal/triangle_geometry.h"
+#include "core/detmath.h"
 
 namespace conformesh::conformal {
 
@@ -56,7 +57,7 @@ bool circumRadius(const std::vector<double>& c, double& R) {
   }
   auto F = [&](double r) {
     double s = 0.0;
-    for (double x : c) s += 2.0 * std::asin(std::min(1.0, x / (2.0 * r)));
+    for (double x : c) s += 2.0 * dmath::asin(std::min(1.0, x / (2.0 * r)));
     return s - 2.0 * kPi;
   };
   double lo = 0.5 * cmax, hi = std::max(P, lo);
@@ -212,7 +213,7 @@ void Flow::setupBoundary() {
   double best = -1.0;
   for (int k = 0; k < nL; ++k) {
     double len = 0.0;
-    for (int e : T_.loopEdges[k]) len += std::exp(0.5 * T_.lambda[e]);
+    for (int e : T_.loopEdges[k]) len += dmath::exp(0.5 * T_.lambda[e]);
     if (len > best) {
       best = len;
       outer_ = k;
@@ -258,7 +259,7 @@ void Flow::setupBoundary() {
       if (!std::isnan(cornerKbar_[v])) {
         sumC += cornerKbar_[v];
       } else {
-        share[i] = 0.5 * (std::exp(0.5 * T_.lambda[outerEdges[(i + n - 1) % n]]) + std::exp(0.5 * T_.lambda[outerEdges[i]]));
+        share[i] = 0.5 * (dmath::exp(0.5 * T_.lambda[outerEdges[(i + n - 1) % n]]) + dmath::exp(0.5 * T_.lambda[outerEdges[i]]));
         wRest += share[i];
       }
     }
@@ -314,7 +315,7 @@ void Flow::updateTargets() {
     for (size_t i = 0; i < n; ++i) m = std::max(m, T_.lambda[le[i]] + u_[loop[i]] + u_[loop[(i + 1) % n]]);
     double P = 0.0;
     for (size_t i = 0; i < n; ++i) {
-      c[i] = std::exp(0.5 * (T_.lambda[le[i]] + u_[loop[i]] + u_[loop[(i + 1) % n]] - m));
+      c[i] = dmath::exp(0.5 * (T_.lambda[le[i]] + u_[loop[i]] + u_[loop[(i + 1) % n]] - m));
       P += c[i];
     }
     const double sgn = (int(k) == outer_) ? 1.0 : -1.0;
@@ -329,7 +330,7 @@ void Flow::updateTargets() {
     double R;
     if (circumRadius(c, R)) {
       for (size_t i = 0; i < n; ++i)
-        Kbar_[loop[i]] = sgn * (std::asin(std::min(1.0, c[(i + n - 1) % n] / (2 * R))) + std::asin(std::min(1.0, c[i] / (2 * R))));
+        Kbar_[loop[i]] = sgn * (dmath::asin(std::min(1.0, c[(i + n - 1) % n] / (2 * R))) + dmath::asin(std::min(1.0, c[i] / (2 * R))));
       LoopJacobian J;
       J.loop = int(k);
       J.sgn = sgn;
@@ -568,7 +569,7 @@ bool Flow::gmres(const Eigen::VectorXd& b, Eigen::VectorXd& x, double tol, int m
       H(i + 1, j) = -sn[i] * H(i, j) + cs[i] * H(i + 1, j);
       H(i, j) = t;
     }
-    const double r = std::hypot(H(j, j), H(j + 1, j));
+    const double r = dmath::hypot(H(j, j), H(j + 1, j));
     cs[j] = H(j, j) / r;
     sn[j] = H(j + 1, j) / r;
     const double hj1 = H(j + 1, j);
@@ -643,7 +644,7 @@ FlowResult Flow::run() {
       fail(Code::IterationLimit, Stage::Flatten,
            "flatten: Newton did not reach the tolerance in " + std::to_string(opt_.maxIterations) + " iterations (error " + std::to_string(err) + ")");
     if (progress_) {
-      const double fr = std::clamp(std::log(err0 / err) / std::log(err0 / opt_.tolerance), 0.0, 0.99);
+      const double fr = std::clamp(dmath::log(err0 / err) / dmath::log(err0 / opt_.tolerance), 0.0, 0.99);
       reported = std::max(reported, fr);
       if (!progress_(Stage::Flatten, 0.8 * reported)) fail(Code::Cancelled, Stage::Flatten, "flatten: cancelled");
     }

@@ -8,6 +8,8 @@
 #include <algorithm>
 #include <cmath>
 
+#include "core/detmath.h"
+
 namespace conformesh::conformal {
 
 constexpr double kPi = 3.14159265358979323846;
@@ -33,7 +35,7 @@ inline double kahanAngle(double c, double a, double b, bool& valid) {
     valid = false;
     return kPi;
   }
-  return 2.0 * std::atan(std::sqrt(num / den));
+  return 2.0 * dmath::atan(std::sqrt(num / den));
 }
 
 //! Corner angles of a triangle given by squared-log lengths lam[k] = 2 log l_k (edge k).
@@ -41,9 +43,9 @@ inline double kahanAngle(double c, double a, double b, bool& valid) {
 //! normalized by the longest). Returns false when the triangle inequality fails.
 inline bool anglesFromLogLengths(const double lam[3], double angle[3]) {
   const double m = std::max(lam[0], std::max(lam[1], lam[2]));
-  const double l0 = std::exp(0.5 * (lam[0] - m));
-  const double l1 = std::exp(0.5 * (lam[1] - m));
-  const double l2 = std::exp(0.5 * (lam[2] - m));
+  const double l0 = dmath::exp(0.5 * (lam[0] - m));
+  const double l1 = dmath::exp(0.5 * (lam[1] - m));
+  const double l2 = dmath::exp(0.5 * (lam[2] - m));
   bool valid = true;
   angle[0] = kahanAngle(l0, l1, l2, valid);
   angle[1] = kahanAngle(l1, l2, l0, valid);
@@ -59,9 +61,9 @@ inline bool anglesFromLogLengths(const double lam[3], double angle[3]) {
 
 //! Cotangent of an angle in (0, pi); +-huge at the limits instead of inf.
 inline double cotOfAngle(double theta) {
-  const double s = std::sin(theta);
+  const double s = dmath::sin(theta);
   if (s < 1e-300) return theta < 1.0 ? 1e300 : -1e300;
-  return std::cos(theta) / s;
+  return dmath::cos(theta) / s;
 }
 
 }  // namespace conformesh::conformal

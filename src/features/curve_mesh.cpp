@@ -1,4 +1,5 @@
 #include "features/curve_mesh.h"
+#include "core/detmath.h"
 
 #include <algorithm>
 #include <cmath>
@@ -10,13 +11,13 @@ namespace {
 // ∫ ds / h over an edge of length L where h goes linearly from h0 to h1.
 double edgeIntegral(double L, double h0, double h1) {
   if (std::abs(h1 - h0) < 1e-12 * (h0 + h1)) return L / h0;
-  return L * std::log(h1 / h0) / (h1 - h0);
+  return L * dmath::log(h1 / h0) / (h1 - h0);
 }
 
 // Parameter t in [0, 1] along an edge where ∫_0^t ds/h = I.
 double edgeParameter(double L, double h0, double h1, double I) {
   if (std::abs(h1 - h0) < 1e-12 * (h0 + h1)) return std::clamp(I * h0 / L, 0.0, 1.0);
-  double h = h0 * std::exp((h1 - h0) * I / L);
+  double h = h0 * dmath::exp((h1 - h0) * I / L);
   return std::clamp((h - h0) / (h1 - h0), 0.0, 1.0);
 }
 

@@ -12,6 +12,7 @@
 #include <vector>
 
 #include "core/mesh_buffers.h"
+#include "core/detmath.h"
 
 namespace conformesh::features {
 
@@ -31,7 +32,7 @@ inline double norm(const Vec3& a) { return std::sqrt(dot(a, a)); }
 //! Angle in radians between two vectors (0 for a zero vector).
 inline double angleBetween(const Vec3& a, const Vec3& b) {
   double c = norm(cross(a, b)), d = dot(a, b);
-  return (c == 0 && d == 0) ? 0.0 : std::atan2(c, d);
+  return (c == 0 && d == 0) ? 0.0 : dmath::atan2(c, d);
 }
 
 //! Edge/face adjacency of a triangle mesh.

@@ -1,4 +1,5 @@
 #include "features/segmentation.h"
+#include "core/detmath.h"
 
 #include <algorithm>
 #include <cmath>
@@ -614,7 +615,7 @@ Segmentation segment(const EdgeGraph& g, const FeatureOptions& options, const Pr
   seg.cornerTurnDeg = options.cornerTurnDeg;
   seg.junctionScale = options.junctionScale;
   seg.edgeKind.assign(g.edgeCount(), EdgeKind::None);
-  const double cosLimit = std::cos(options.featureAngleDeg * kPi / 180.0);
+  const double cosLimit = dmath::cos(options.featureAngleDeg * kPi / 180.0);
   for (uint32_t e = 0; e < g.edgeCount(); ++e) {
     if (g.isBoundary(e)) {
       seg.edgeKind[e] = EdgeKind::Boundary;
@@ -645,7 +646,7 @@ Segmentation segment(const EdgeGraph& g, const FeatureOptions& options, const Pr
         length[r] += g.edgeLength(e);
         minDot[r] = std::min(minDot[r], dot(g.faceNormal(g.edgeFaces[e][0]), g.faceNormal(g.edgeFaces[e][1])));
       }
-    const double keepDot = std::cos(options.minFeatureKeepDeg * kPi / 180.0);
+    const double keepDot = dmath::cos(options.minFeatureKeepDeg * kPi / 180.0);
     for (uint32_t e = 0; e < g.edgeCount(); ++e)
       if (seg.edgeKind[e] == EdgeKind::Feature && length[find(g.edgeVerts[e][0])] < options.minFeatureLength && minDot[find(g.edgeVerts[e][0])] > keepDot) {
         seg.edgeKind[e] = EdgeKind::None;

@@ -1,4 +1,5 @@
 #include "mesh/precondition.h"
+#include "core/detmath.h"
 
 #include <algorithm>
 #include <cmath>
@@ -179,7 +180,7 @@ class Editor {
     if (!(l0 > 0 && l1 > 0) || 1.0 - dot(n0, n1) / (l0 * l1) > tol) return false;
     auto angle = [](const P3& p, const P3& q, const P3& r) {  // at p
       const P3 x = sub(q, p), y = sub(r, p);
-      return std::atan2(len(cross(x, y)), dot(x, y));
+      return dmath::atan2(len(cross(x, y)), dot(x, y));
     };
     if (angle(pc, pa, pb) + angle(pd, pb, pa) <= kPi * (1 + 1e-12)) return false;
     // both new triangles keep the orientation (the quad is strictly convex at a and b)

@@ -1,4 +1,5 @@
 #include "mesh/primitives.h"
+#include "core/detmath.h"
 
 #include <array>
 #include <cmath>
@@ -90,7 +91,7 @@ MeshBuffers makeTorus(int nu, int nv, double R, double r) {
   checkArg(nu >= 3 && nv >= 3 && R > r && r > 0, "torus needs segments >= 3 and R > r > 0");
   return periodicGrid(nu, nv, [&](int i, int j) {
     double u = 2 * kPi * i / nu, v = 2 * kPi * j / nv;
-    return std::array<double, 3>{(R + r * std::cos(v)) * std::cos(u), (R + r * std::cos(v)) * std::sin(u), r * std::sin(v)};
+    return std::array<double, 3>{(R + r * dmath::cos(v)) * dmath::cos(u), (R + r * dmath::cos(v)) * dmath::sin(u), r * dmath::sin(v)};
   });
 }
 
@@ -101,7 +102,7 @@ MeshBuffers makeDisk(int rings, int sectors, double radius) {
   for (int k = 1; k <= rings; ++k)
     for (int i = 0; i < sectors; ++i) {
       double a = 2 * kPi * i / sectors, rr = radius * k / rings;
-      addVertex(m, rr * std::cos(a), rr * std::sin(a), 0);
+      addVertex(m, rr * dmath::cos(a), rr * dmath::sin(a), 0);
     }
   auto id = [&](int k, int i) { return k == 0 ? 0u : uint32_t(1 + (k - 1) * sectors + i % sectors); };
   for (int i = 0; i < sectors; ++i) addTriangle(m, 0, id(1, i), id(1, i + 1));
@@ -116,7 +117,7 @@ MeshBuffers makeAnnulus(int rings, int sectors, double r0, double r1) {
   for (int k = 0; k <= rings; ++k)
     for (int i = 0; i < sectors; ++i) {
       double a = 2 * kPi * i / sectors, rr = r0 + (r1 - r0) * k / rings;
-      addVertex(m, rr * std::cos(a), rr * std::sin(a), 0);
+      addVertex(m, rr * dmath::cos(a), rr * dmath::sin(a), 0);
     }
   auto id = [&](int k, int i) { return uint32_t(k * sectors + i % sectors); };
   for (int k = 0; k < rings; ++k)

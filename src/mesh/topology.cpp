@@ -6,6 +6,7 @@
 
 #include "mesh/edge_groups.h"
 #include "mesh/mesh_checks.h"
+#include "core/detmath.h"
 
 namespace conformesh {
 
@@ -72,7 +73,7 @@ EdgeData<double> dihedralAngles(const HalfedgeMesh& mesh, const VertexData<Vec3>
     Vec3 d = edgeVector(mesh, pos, h);
     double len = d.norm();
     if (len == 0.0 || n1.squaredNorm() == 0.0 || n2.squaredNorm() == 0.0) continue;
-    angle[e] = std::atan2(n1.cross(n2).dot(d) / len, n1.dot(n2));
+    angle[e] = dmath::atan2(n1.cross(n2).dot(d) / len, n1.dot(n2));
   }
   return angle;
 }

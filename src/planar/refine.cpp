@@ -11,6 +11,7 @@
 #include <unordered_set>
 
 #include "planar/cdt_state.h"
+#include "core/detmath.h"
 
 namespace conformesh::planar {
 namespace {
@@ -80,10 +81,10 @@ class Refiner {
     angleOn_ = o.minAngleDeg > 0;
     // A hair above θ, so that a triangle that is at θ up to rounding is split rather than
     // reported as 29.999999999999993 degrees.
-    cos2Bound_ = std::cos(th) * std::cos(th) * (1.0 - 1e-9);
-    lensCos2_ = angleOn_ && o.diametralLens ? std::cos(2 * th) * std::cos(2 * th) : 0.0;
-    sin2Bound_ = std::sin(th) * std::sin(th);
-    offK_ = (o.offcenters && angleOn_) ? o.offcenterFactor / (2.0 * std::tan(th / 2)) : INFINITY;
+    cos2Bound_ = dmath::cos(th) * dmath::cos(th) * (1.0 - 1e-9);
+    lensCos2_ = angleOn_ && o.diametralLens ? dmath::cos(2 * th) * dmath::cos(2 * th) : 0.0;
+    sin2Bound_ = dmath::sin(th) * dmath::sin(th);
+    offK_ = (o.offcenters && angleOn_) ? o.offcenterFactor / (2.0 * dmath::tan(th / 2)) : INFINITY;
     sizeOn_ = o.maxArea > 0 || o.maxEdge > 0 || bool(o.sizing) || !o.vertexSizing.empty();
     if (!o.vertexSizing.empty()) {
       vh_.assign(o.vertexSizing.begin(), o.vertexSizing.end());
@@ -96,7 +97,7 @@ class Refiner {
       y0 = std::min(y0, T_.xy[i + 1]);
       y1 = std::max(y1, T_.xy[i + 1]);
     }
-    double diag = std::hypot(x1 - x0, y1 - y0);
+    double diag = dmath::hypot(x1 - x0, y1 - y0);
     reserveForSize();
     minSeg2_ = std::max(diag * 1e-11, o_.minSegmentLength) * std::max(diag * 1e-11, o_.minSegmentLength);
     invDiag2_ = 1.0 / (diag * diag);
@@ -570,7 +571,7 @@ RefineResult refinePslg(const Pslg& pslg, const RefineOptions& options) {
   const Triangulation& T = s.tri;
   double minSin2 = INFINITY;
   const double th = options.minAngleDeg * kPi / 180.0;
-  const double sin2Bound = std::sin(th) * std::sin(th);
+  const double sin2Bound = dmath::sin(th) * dmath::sin(th);
   for (uint32_t t = 0; t < T.tris.size(); ++t) {
     if (!s.inDomain(t)) continue;
     const Tri& Tt = T.tris[t];
@@ -591,7 +592,7 @@ RefineResult refinePslg(const Pslg& pslg, const RefineOptions& options) {
     minSin2 = std::min(minSin2, sin2);
   }
   extractMesh(s, r.mesh, true);
-  r.minAngleDeg = std::isfinite(minSin2) ? std::asin(std::sqrt(std::min(1.0, minSin2))) * 180.0 / kPi : 0.0;
+  r.minAngleDeg = std::isfinite(minSin2) ? dmath::asin(std::sqrt(std::min(1.0, minSin2))) * 180.0 / kPi : 0.0;
   r.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
   if (options.progress && !options.progress(Stage::Refine, 1.0))
     fail(Code::Cancelled, Stage::Refine, "refinement cancelled");

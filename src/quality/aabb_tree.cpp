@@ -42,6 +42,9 @@ void AabbTree::build(const std::vector<Box3>& boxes) {
     for (int k = 1; k < 3; ++k)
       if (cbox.hi[k] - cbox.lo[k] > cbox.hi[axis] - cbox.lo[axis]) axis = k;
     if (n <= kLeafSize || !(cbox.hi[axis] > cbox.lo[axis])) {
+      // nth_element leaves each side in an order that differs between standard libraries
+      // (libstdc++ natively, libc++ in WASM); sorted leaves make ties in queries resolve alike
+      std::sort(order_.begin() + t.begin, order_.begin() + t.end);
       nodes_[t.node].first = t.begin;
       nodes_[t.node].count = n;
       continue;

@@ -1,4 +1,5 @@
 #include "quality/metrics.h"
+#include "core/detmath.h"
 
 #include <algorithm>
 #include <cmath>
@@ -22,7 +23,7 @@ inline Vec3 cross(const Vec3& a, const Vec3& b) {
 inline double norm(const Vec3& a) { return std::sqrt(dot(a, a)); }
 
 //! Angle between u and v in radians, by atan2(|u×v|, u·v): accurate for needles too.
-inline double angleBetween(const Vec3& u, const Vec3& v) { return std::atan2(norm(cross(u, v)), dot(u, v)); }
+inline double angleBetween(const Vec3& u, const Vec3& v) { return dmath::atan2(norm(cross(u, v)), dot(u, v)); }
 
 bool triangleValid(const MeshBuffers& m, size_t f) {
   size_t n = m.vertexCount();
@@ -94,7 +95,7 @@ Vec3 faceNormal(const MeshBuffers& m, uint32_t f) {
 std::vector<std::pair<uint32_t, uint32_t>> featureEdges(const MeshBuffers& m, double angleDeg) {
   std::vector<std::pair<uint32_t, uint32_t>> out;
   std::vector<EdgeRef> refs = sortedEdgeRefs(m);
-  double cosLimit = std::cos(angleDeg / kDeg);
+  double cosLimit = dmath::cos(angleDeg / kDeg);
   for (size_t i = 0; i < refs.size();) {
     size_t j = i;
     while (j < refs.size() && refs[j].a == refs[i].a && refs[j].b == refs[i].b) ++j;

@@ -6,9 +6,13 @@
 #include <unordered_map>
 
 #include "planar/predicates.h"
+#include "core/detmath.h"
 
 namespace conformesh::optimization {
 namespace {
+
+//! x² as one product (std::pow(x, 2) goes through libm in some builds).
+inline double sq(double x) { return x * x; }
 
 using features::Vec3;
 constexpr double kRadToDeg = 57.295779513082320876798;
@@ -32,7 +36,7 @@ Corner smallestCorner(const Vec3& a, const Vec3& b, const Vec3& c) {
   return {features::norm(features::cross(u, w)), features::dot(u, w)};
 }
 
-double cornerDeg(const Corner& k) { return ((k.cr == 0 && k.dt == 0) ? 0.0 : std::atan2(k.cr, k.dt)) * kRadToDeg; }
+double cornerDeg(const Corner& k) { return ((k.cr == 0 && k.dt == 0) ? 0.0 : dmath::atan2(k.cr, k.dt)) * kRadToDeg; }
 
 // cornerDeg without atan2, to within kApproxErrDeg (NaN for a degenerate corner). atan(z) on
 // [0, 1] by the polynomial of Abramowitz–Stegun 4.4.49 (Hastings 1955), |error| <= 2e-8 rad
@@ -143,9 +147,9 @@ bool tryMove(Mesh& m, uint32_t v, double x, double y, const LiftFn& lift, double
     const uint32_t* t = &m.tri[3 * size_t(s[i])];
     const double* c[3];
     for (int k = 0; k < 3; ++k) c[k] = t[k] == v ? q : m.p(t[k]);
-    const double l2 = std::max({std::pow(c[1][0] - c[0][0], 2) + std::pow(c[1][1] - c[0][1], 2),
-                                std::pow(c[2][0] - c[1][0], 2) + std::pow(c[2][1] - c[1][1], 2),
-                                std::pow(c[0][0] - c[2][0], 2) + std::pow(c[0][1] - c[2][1], 2)});
+    const double l2 = std::max({sq(c[1][0] - c[0][0]) + sq(c[1][1] - c[0][1]),
+                                sq(c[2][0] - c[1][0]) + sq(c[2][1] - c[1][1]),
+                                sq(c[0][0] - c[2][0]) + sq(c[0][1] - c[2][1])});
     if (!(orient2d(c[0], c[1], c[2]) > 1e-6 * l2)) {
       m.pos[v] = keep;
       return false;
@@ -269,7 +273,7 @@ size_t flipPass(Mesh& m, std::vector<uint8_t>& touched) {
     const Corner k1 = smallestCorner(m.pos[c1], m.pos[y], m.pos[c0]);
     if (cornerDegApprox(k1) + kApproxErrDeg <= before + 1e-6) continue;
     // both must be strictly positive in the plane
-    const double l2 = std::pow(m.p(c0)[0] - m.p(c1)[0], 2) + std::pow(m.p(c0)[1] - m.p(c1)[1], 2);
+    const double l2 = sq(m.p(c0)[0] - m.p(c1)[0]) + sq(m.p(c0)[1] - m.p(c1)[1]);
     if (!(orient2d(m.p(c0), m.p(x), m.p(c1)) > 1e-6 * l2) || !(orient2d(m.p(c1), m.p(y), m.p(c0)) > 1e-6 * l2)) continue;
     const double n0 = cornerDeg(k0), n1 = cornerDeg(k1);
     if (!(std::min(n0, n1) > before + 1e-6)) continue;
@@ -348,13 +352,13 @@ OptimizeStats optimizePatch(std::vector<double>& xy, std::vector<uint32_t>& tria
         for (uint32_t k = m.starStart[v]; k < m.starStart[v + 1]; ++k) {
           const uint32_t* t3 = &m.tri[3 * size_t(m.starTri[k])];
           for (int c = 0; c < 3; ++c)
-            if (t3[c] != v) shortest = std::min(shortest, std::hypot(m.p(t3[c])[0] - xy[2 * size_t(v)], m.p(t3[c])[1] - xy[2 * size_t(v) + 1]));
+            if (t3[c] != v) shortest = std::min(shortest, dmath::hypot(m.p(t3[c])[0] - xy[2 * size_t(v)], m.p(t3[c])[1] - xy[2 * size_t(v) + 1]));
         }
         for (double step : {0.25, 0.1})
           for (int d = 0; d < 8; ++d) {
             const double a = d * 0.78539816339744830962;
             const double cx = xy[2 * size_t(v)], cy = xy[2 * size_t(v) + 1];
-            moved = tryMove(m, v, cx + step * shortest * std::cos(a), cy + step * shortest * std::sin(a), lift, o.minAngleDeg, q) || moved;
+            moved = tryMove(m, v, cx + step * shortest * dmath::cos(a), cy + step * shortest * dmath::sin(a), lift, o.minAngleDeg, q) || moved;
           }
       }
       if (!moved) continue;

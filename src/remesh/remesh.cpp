@@ -23,11 +23,15 @@
 #include "mesh/precondition.h"
 #include "remesh/optimize.h"
 #include "remesh/limits.h"
+#include "core/detmath.h"
 
 namespace conformesh {
 namespace {
 
 namespace F = features;
+
+//! x² as one product (std::pow(x, 2) goes through libm in some builds).
+inline double sq(double x) { return x * x; }
 using F::kNone;
 constexpr double kPi = 3.14159265358979323846;
 // Rounds of re-refining patches whose boundary got samples from a neighbour's segment splits.
@@ -412,7 +416,7 @@ uint32_t Pipeline::addSplitSample(const PatchWork& w, const std::vector<Boundary
     double x0, y0, x1, y1;
     halfedgeUv(pieces[i].k, pieces[i].t0, x0, y0);
     halfedgeUv(pieces[i].k, pieces[i].t1, x1, y1);
-    len[i] = std::hypot(x1 - x0, y1 - y0);
+    len[i] = dmath::hypot(x1 - x0, y1 - y0);
     total += len[i];
   }
   double target = t * total, acc = 0;
@@ -481,7 +485,7 @@ bool degenerateBoundary(const std::vector<BoundaryPoint>& bp) {
   size_t far = 0;
   double d2 = 0;
   for (size_t i = 1; i < bp.size(); ++i) {
-    double dd = std::pow(bp[i].x - bp[0].x, 2) + std::pow(bp[i].y - bp[0].y, 2);
+    double dd = sq(bp[i].x - bp[0].x) + sq(bp[i].y - bp[0].y);
     if (dd > d2) d2 = dd, far = i;
   }
   double ex = bp[far].x - bp[0].x, ey = bp[far].y - bp[0].y, l = std::sqrt(d2), off = 0;
@@ -543,7 +547,7 @@ bool Pipeline::liftPoint(const PatchWork& w, double x, double y, PullbackPoint& 
     uint32_t a = w.pm.mesh.triangles[3 * h.face + h.corner], b = w.pm.mesh.triangles[3 * h.face + (h.corner + 1) % 3];
     double ex = uv[2 * b] - uv[2 * a], ey = uv[2 * b + 1] - uv[2 * a + 1], l2 = ex * ex + ey * ey;
     double t = l2 > 0 ? std::clamp(((x - uv[2 * a]) * ex + (y - uv[2 * a + 1]) * ey) / l2, 0.0, 1.0) : 0.0;
-    double px = uv[2 * a] + t * ex, py = uv[2 * a + 1] + t * ey, d = std::hypot(px - x, py - y);
+    double px = uv[2 * a] + t * ex, py = uv[2 * a + 1] + t * ey, d = dmath::hypot(px - x, py - y);
     if (d < best) best = d, bx = px, by = py;
   }
   return std::isfinite(best) && pb.locate(bx, by, q, 1e-6);
@@ -570,7 +574,7 @@ void Pipeline::meshPatch(uint32_t p, bool splitSegments) {
       for (const Piece& pc : stretch(w, bp[i], bp[(i + 1) % bp.size()], bp.size())) {
         const auto& h = loop[pc.k];
         uint32_t va = w.pm.mesh.triangles[3 * h.face + h.corner], vb = w.pm.mesh.triangles[3 * h.face + (h.corner + 1) % 3];
-        len += (pc.t1 - pc.t0) * std::hypot(w.flat.uv[2 * vb] - w.flat.uv[2 * va], w.flat.uv[2 * vb + 1] - w.flat.uv[2 * va + 1]);
+        len += (pc.t1 - pc.t0) * dmath::hypot(w.flat.uv[2 * vb] - w.flat.uv[2 * va], w.flat.uv[2 * vb + 1] - w.flat.uv[2 * va + 1]);
       }
       if (len > best) best = len, longest = i;
     }
@@ -611,7 +615,7 @@ void Pipeline::meshPatch(uint32_t p, bool splitSegments) {
       s += q.bary[c] * w.scaleSub[v];
     }
     double hp = kSizeFactor * h * s;
-    for (const Spot& sp : w.spots) hp = std::min(hp, sp.h + 0.5 * std::hypot(x - sp.x, y - sp.y));
+    for (const Spot& sp : w.spots) hp = std::min(hp, sp.h + 0.5 * dmath::hypot(x - sp.x, y - sp.y));
     return hp;
   };
   double area3 = 0;
@@ -762,6 +766,9 @@ std::vector<RemeshPatch> Pipeline::patchSnapshot(const MeshBuffers& out) const {
   return res;
 }
 
+//! A triangle with a corner below this (degrees) has collapsed: never a wanted output.
+constexpr double kCollapsedDeg = 1e-3;
+
 double triangleMinAngle(const MeshBuffers& m, size_t t, double* maxAngle = nullptr) {
   F::Vec3 p[3];
   for (int c = 0; c < 3; ++c) {
@@ -810,7 +817,7 @@ RemeshResult Pipeline::run(const MeshBuffers& input) {
     double lo[3] = {INFINITY, INFINITY, INFINITY}, hi[3] = {-INFINITY, -INFINITY, -INFINITY};
     for (size_t v = 0; v < in.vertexCount(); ++v)
       for (int k = 0; k < 3; ++k) lo[k] = std::min(lo[k], in.positions[3 * v + k]), hi[k] = std::max(hi[k], in.positions[3 * v + k]);
-    target = opt_.targetEdgeLength > 0 ? opt_.targetEdgeLength : opt_.targetEdgeLengthRel * std::hypot(hi[0] - lo[0], hi[1] - lo[1], hi[2] - lo[2]);
+    target = opt_.targetEdgeLength > 0 ? opt_.targetEdgeLength : opt_.targetEdgeLengthRel * dmath::hypot(hi[0] - lo[0], hi[1] - lo[1], hi[2] - lo[2]);
     for (size_t f = 0; f < in.triangleCount(); ++f) {
       const uint32_t* t = &in.triangles[3 * f];
       F::Vec3 a{in.positions[3 * t[0]], in.positions[3 * t[0] + 1], in.positions[3 * t[0] + 2]};
@@ -890,7 +897,7 @@ RemeshResult Pipeline::run(const MeshBuffers& input) {
   std::vector<uint8_t> exemptVertex;
   MeshBuffers bestOut;
   std::vector<uint32_t> bestTriPatch;
-  size_t bestBad = SIZE_MAX;
+  size_t bestBad = SIZE_MAX, bestCollapsed = SIZE_MAX;
   std::vector<std::vector<uint32_t>> bestCurveSamples;
   std::vector<RemeshPatch> bestPatches;
   for (int cert = 0;; ++cert) {
@@ -944,11 +951,18 @@ RemeshResult Pipeline::run(const MeshBuffers& input) {
     }
     exemptVertex.resize(out.vertexCount(), 0);
     indexExemptWedges(exemptVertex);
-    size_t bad = 0;
-    for (size_t t = 0; t < out.triangleCount(); ++t)
-      if (triangleMinAngle(out, t) < opt_.minAngleDeg && exemptCornerOf(out, t, exemptVertex) == kNone) ++bad;
-    if (bad < bestBad) {
+    // bad: below the bound outside exempt corners; collapsed: a corner below kCollapsedDeg (points
+    // closer than the lift resolves, e.g. refinement cascading into a small exempt wedge). A round
+    // never wins by trading bad triangles for collapsed ones.
+    size_t bad = 0, collapsed = 0;
+    for (size_t t = 0; t < out.triangleCount(); ++t) {
+      const double a = triangleMinAngle(out, t);
+      if (a < kCollapsedDeg) ++collapsed;
+      if (a < opt_.minAngleDeg && exemptCornerOf(out, t, exemptVertex) == kNone) ++bad;
+    }
+    if (collapsed < bestCollapsed || (collapsed == bestCollapsed && bad < bestBad)) {
       bestBad = bad;
+      bestCollapsed = collapsed;
       bestOut = out;
       bestTriPatch = triPatch;
       bestCurveSamples = cm_.curveSamples;
@@ -972,7 +986,7 @@ RemeshResult Pipeline::run(const MeshBuffers& input) {
         cx += w.planarPoints[2 * lt[c]] / 3.0;
         cy += w.planarPoints[2 * lt[c] + 1] / 3.0;
         uint32_t a = lt[c], b = lt[(c + 1) % 3];
-        longest = std::max(longest, std::hypot(w.planarPoints[2 * a] - w.planarPoints[2 * b],
+        longest = std::max(longest, dmath::hypot(w.planarPoints[2 * a] - w.planarPoints[2 * b],
                                                w.planarPoints[2 * a + 1] - w.planarPoints[2 * b + 1]));
       }
       w.spots.push_back({cx, cy, 0.5 * longest});

@@ -1,18 +1,10 @@
-// Determinism of remesh (issue 8). Run to run, in WASM: bit-identical. Native (g++, glibc libm) vs
-// WASM (clang, emscripten's musl libm): NOT bit-identical today, and this file says exactly what
-// holds. Both builds compile the library with -ffp-contract=off (no FMA contraction) and the
-// planar stage alone is bit-identical (tests/js/cli.test.ts, refine2d). Two causes remain, both
-// in the flattening: (1) libm: glibc and musl round exp/sin/cos/atan2/hypot/asin/acos differently
-// in the last bit for a few % of arguments (atan2 18 %, asin 24 %, hypot 13 %, sin/cos 3 %,
-// exp 0.07 % of 1e5 random arguments); (2) Eigen vectorizes dense reductions with SSE2 natively
-// (another summation order) and not in WASM (no -msimd128): a native build with
-// -DEIGEN_DONT_VECTORIZE flattens camelhead.off to other bits than the default native build.
-// The Ricci flow and the layout carry those differences (relative 1e-14 in the flattened
-// coordinates), and the planar refinement then makes some different decisions: the triangle
-// counts differ by about 1 %. Identity needs one implementation of those functions compiled into
-// both builds, and scalar Eigen natively (flatten about 10 % slower).
+// Determinism of remesh (issue 8): run to run bit-identical in WASM, and native (g++, glibc) and
+// WASM (clang, emscripten's musl) byte-identical. Both builds compile the library with
+// -ffp-contract=off and EIGEN_DONT_VECTORIZE, and the pipeline calls conformesh::dmath
+// (src/core/detmath.h) instead of the platform libm, whose last bits differ between glibc and musl
+// (docs/ARCHITECTURE.md, "Determinism"). The last test keeps new libm calls out of src/.
 import { spawnSync } from 'node:child_process';
-import { mkdirSync, readFileSync, writeFileSync } from 'node:fs';
+import { mkdirSync, readdirSync, readFileSync, statSync, writeFileSync } from 'node:fs';
 import { join } from 'node:path';
 import { describe, expect, it } from 'vitest';
 import { init } from '../../dist/index.js';
@@ -57,11 +49,28 @@ describe('remesh determinism', () => {
       expect(Math.abs(w.triangles - n.triangles)).toBeLessThanOrEqual(0.03 * n.triangles);
     });
 
-    // Known failure (see the top of this file): flips to a plain `it` once both builds share one
-    // implementation of the transcendental functions.
-    it.fails(`${name}: native and WASM outputs are byte-identical`, async () => {
+    it(`${name}: native and WASM outputs are byte-identical`, async () => {
       const r = await both(name, bytes(), args, options);
       expect(r.wasm.equals(r.native)).toBe(true);
     });
   }
+
+  it('src/ calls no libm transcendental or std::complex function outside src/cli/ (conformesh::dmath instead)', () => {
+    const libm = /\bstd::(exp|exp2|expm1|log|log2|log10|log1p|pow|cbrt|sin|cos|tan|asin|acos|atan|atan2|sinh|cosh|tanh|hypot|erf|erfc|tgamma|lgamma|norm|arg|polar)\s*\(/;
+    const offenders: string[] = [];
+    const walk = (dir: string) => {
+      for (const e of readdirSync(dir)) {
+        const p = join(dir, e);
+        if (statSync(p).isDirectory()) {
+          if (e !== 'cli') walk(p);
+        } else if (/\.(h|cpp)$/.test(e) && !/detmath/.test(e)) {
+          readFileSync(p, 'utf8').split('\n').forEach((line, i) => {
+            if (libm.test(line.replace(/\/\/.*$/, ''))) offenders.push(`${p}:${i + 1}: ${line.trim()}`);
+          });
+        }
+      }
+    };
+    walk(join(root, 'src'));
+    expect(offenders).toEqual([]);
+  });
 });
