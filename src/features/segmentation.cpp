@@ -224,7 +224,8 @@ Vec3 pointAlong(const EdgeGraph& g, const std::vector<uint32_t>& path, double le
 
 // The faces of patches a and b (as they were) regrouped across the edges that are not curves now:
 // exactly two groups, each a disk.
-bool splitsIntoTwoDisks(const EdgeGraph& g, const Segmentation& seg, const std::vector<uint32_t>& a, const std::vector<uint32_t>& b) {
+bool splitsIntoTwoDisks(const EdgeGraph& g, const Segmentation& seg, const std::vector<uint8_t>& mask,
+                        const std::vector<uint32_t>& a, const std::vector<uint32_t>& b) {
   std::vector<uint32_t> faces(a);
   faces.insert(faces.end(), b.begin(), b.end());
   std::sort(faces.begin(), faces.end());
@@ -256,7 +257,6 @@ bool splitsIntoTwoDisks(const EdgeGraph& g, const Segmentation& seg, const std::
     }
   }
   if (groups.size() != 2) return false;
-  const std::vector<uint8_t> mask = seg.curveMask();
   for (const auto& gr : groups)
     if (!extractPatch(g, mask, gr, false).isDisk()) return false;
   return true;
@@ -269,6 +269,11 @@ uint32_t improveCutJunctions(const EdgeGraph& g, Segmentation& seg, double scale
   const int kPasses = 8;                     // one reroute per patch and pass
   const size_t kTries = 6;                   // landings tried per cut end
   const std::vector<EdgeKind> original = seg.edgeKind;
+  std::vector<uint8_t> mask = seg.curveMask();  // kept in step with seg.edgeKind below
+  auto setKind = [&](uint32_t e, EdgeKind kind) {
+    seg.edgeKind[e] = kind;
+    mask[e] = kind != EdgeKind::None;
+  };
   std::vector<uint32_t> valence(g.vertexCount, 0);
   std::vector<double> dist(g.vertexCount, INFINITY);
   std::vector<uint32_t> predEdge(g.vertexCount, kNone), seen;
@@ -328,7 +333,7 @@ uint32_t improveCutJunctions(const EdgeGraph& g, Segmentation& seg, double scale
         for (size_t i = 0; i < k; ++i) {
           uint32_t e = g.findEdge(path[i], path[i + 1]);
           oldEdges.push_back(e);
-          seg.edgeKind[e] = EdgeKind::None;
+          setKind(e, EdgeKind::None);
           --valence[path[i]], --valence[path[i + 1]];
         }
         for (size_t i = k + 1; i < path.size(); ++i) forbidden[path[i]] = 1;
@@ -405,13 +410,13 @@ uint32_t improveCutJunctions(const EdgeGraph& g, Segmentation& seg, double scale
           for (uint32_t x = ranked[r].second; x != u; x = g.otherVertex(predEdge[x], x)) newPath.push_back(x);
           newPath.push_back(u);
           for (size_t i = 0; i + 1 < newPath.size(); ++i) {
-            seg.edgeKind[g.findEdge(newPath[i], newPath[i + 1])] = EdgeKind::Cut;
+            setKind(g.findEdge(newPath[i], newPath[i + 1]), EdgeKind::Cut);
             ++valence[newPath[i]], ++valence[newPath[i + 1]];
           }
-          commit = splitsIntoTwoDisks(g, seg, seg.patches[A], seg.patches[B]);
+          commit = splitsIntoTwoDisks(g, seg, mask, seg.patches[A], seg.patches[B]);
           if (!commit)  // A and B share another curve that this cut leaves on one side
             for (size_t i = 0; i + 1 < newPath.size(); ++i) {
-              seg.edgeKind[g.findEdge(newPath[i], newPath[i + 1])] = EdgeKind::None;
+              setKind(g.findEdge(newPath[i], newPath[i + 1]), EdgeKind::None);
               --valence[newPath[i]], --valence[newPath[i + 1]];
             }
         }
@@ -426,7 +431,7 @@ uint32_t improveCutJunctions(const EdgeGraph& g, Segmentation& seg, double scale
         }
         if (!commit) {
           for (size_t i = 0; i < k; ++i) {
-            seg.edgeKind[oldEdges[i]] = EdgeKind::Cut;
+            setKind(oldEdges[i], EdgeKind::Cut);
             ++valence[path[i]], ++valence[path[i + 1]];
           }
         }
@@ -438,7 +443,7 @@ uint32_t improveCutJunctions(const EdgeGraph& g, Segmentation& seg, double scale
   }
   if (total == 0) return 0;
   // the safety net: every patch is still a disk, else the cuts are put back as they were
-  const std::vector<uint8_t> mask = seg.curveMask();
+  mask = seg.curveMask();
   for (const auto& faces : seg.patches)
     if (!extractPatch(g, mask, faces, false).isDisk()) {
       seg.edgeKind = original;
