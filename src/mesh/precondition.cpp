@@ -212,6 +212,27 @@ class Editor {
 Preconditioned precondition(const MeshBuffers& input, const std::vector<std::array<uint32_t, 2>>& protectedEdges,
                             const PreconditionOptions& options) {
   Preconditioned out;
+  if (options.faceMask.size() == input.triangleCount() &&
+      std::none_of(options.faceMask.begin(), options.faceMask.end(), [](uint8_t m) { return m != 0; })) {
+    // nothing may change: the input as it is, without building the edge map
+    out.mesh = input;
+    out.parents.resize(input.vertexCount());
+    for (uint32_t v = 0; v < out.parents.size(); ++v) out.parents[v] = {v, v};
+    out.faceOrigin.resize(input.triangleCount());
+    for (uint32_t f = 0; f < out.faceOrigin.size(); ++f) out.faceOrigin[f] = f;
+    // the protected pairs that are edges, as the editor keeps them (sorted keys, smaller first)
+    std::unordered_set<uint64_t> wanted, found;
+    for (const auto& e : protectedEdges) wanted.insert(edgeKey(e[0], e[1]));
+    for (size_t t = 0; t < input.triangles.size() && !wanted.empty(); t += 3)
+      for (int c = 0; c < 3; ++c) {
+        const uint64_t k = edgeKey(input.triangles[t + c], input.triangles[t + (c + 1) % 3]);
+        if (wanted.count(k)) found.insert(k);
+      }
+    std::vector<uint64_t> keys(found.begin(), found.end());
+    std::sort(keys.begin(), keys.end());
+    for (uint64_t k : keys) out.protectedEdges.push_back({uint32_t(k >> 32), uint32_t(k & 0xffffffffu)});
+    return out;
+  }
   Editor ed(input, protectedEdges, options.faceMask);
   // split, flip, and once more: the flips make shorter diagonals, the second split pass only
   // finds the long edges flipping could not remove

@@ -493,6 +493,14 @@ bool degenerateBoundary(const std::vector<BoundaryPoint>& bp) {
   return off < 1e-6 * span;
 }
 
+// The closed polygon through a patch's boundary points, in order.
+planar::Pslg boundaryPslg(const std::vector<BoundaryPoint>& bp) {
+  planar::Pslg pslg;
+  for (const auto& b : bp) pslg.points.insert(pslg.points.end(), {b.x, b.y});
+  for (uint32_t i = 0; i < bp.size(); ++i) pslg.segments.insert(pslg.segments.end(), {i, uint32_t((i + 1) % bp.size())});
+  return pslg;
+}
+
 // The segments of a closed boundary polygon that cross another one (or fold back onto their
 // neighbour), by exact orientation tests over all pairs: only used when refinement rejected the
 // polygon, which is rare.
@@ -584,9 +592,7 @@ void Pipeline::meshPatch(uint32_t p, bool splitSegments) {
     bp = boundaryPoints(w);
   }
   if (degenerateBoundary(bp)) fail(Code::InternalError, Stage::Refine, "patch " + std::to_string(p) + ": its boundary samples do not make a polygon");
-  planar::Pslg pslg;
-  for (const auto& b : bp) pslg.points.insert(pslg.points.end(), {b.x, b.y});
-  for (uint32_t i = 0; i < bp.size(); ++i) pslg.segments.insert(pslg.segments.end(), {i, uint32_t((i + 1) % bp.size())});
+  planar::Pslg pslg = boundaryPslg(bp);
   planar::RefineOptions ro;
   // Diametral lenses: far fewer segment splits, so fewer samples a neighbour must take up and
   // fewer rounds. The planar bound has a margin over the 3D one for the small angle distortion
@@ -638,10 +644,7 @@ void Pipeline::meshPatch(uint32_t p, bool splitSegments) {
     w.builtAt = ++stamp_;
     w.dirty = false;
     bp = boundaryPoints(w);
-    pslg.points.clear();
-    pslg.segments.clear();
-    for (const auto& b : bp) pslg.points.insert(pslg.points.end(), {b.x, b.y});
-    for (uint32_t i = 0; i < bp.size(); ++i) pslg.segments.insert(pslg.segments.end(), {i, uint32_t((i + 1) % bp.size())});
+    pslg = boundaryPslg(bp);
   }
   if (!rr.status.ok()) fail(rr.status.code, Stage::Refine, "patch " + std::to_string(p) + ": " + rr.status.message);
   const auto& pmsh = rr.mesh;
@@ -834,29 +837,29 @@ RemeshResult Pipeline::run(const MeshBuffers& input) {
      // in the patches that need cuts (only there do curves follow input edges that are not
      // features): a first segmentation of the input finds them
     PreconditionOptions po;
-    {
-      const F::EdgeGraph g0 = F::buildEdgeGraph(in);
-      F::FeatureOptions f0 = fo;
-      f0.featureEdges = userFeatures;
-      f0.junctionScale = 0;
-      const F::Segmentation s0 = F::segment(g0, f0, progress_);
-      std::vector<uint8_t> cutPatch(s0.patches.size(), 0);
-      for (uint32_t e = 0; e < g0.edgeCount(); ++e)
-        if (s0.edgeKind[e] == F::EdgeKind::Cut)
-          for (uint32_t f : g0.edgeFaces[e])
-            if (f != F::kNone) cutPatch[s0.facePatch[f]] = 1;
-      po.faceMask.resize(in.triangleCount());
-      for (uint32_t f = 0; f < in.triangleCount(); ++f) po.faceMask[f] = cutPatch[s0.facePatch[f]];
-    }
+    g_ = F::buildEdgeGraph(in);
+    F::FeatureOptions f0 = fo;
+    f0.featureEdges = userFeatures;
+    seg_ = F::segment(g_, f0, progress_);
+    std::vector<uint8_t> cutPatch(seg_.patches.size(), 0);
+    for (uint32_t e = 0; e < g_.edgeCount(); ++e)
+      if (seg_.edgeKind[e] == F::EdgeKind::Cut)
+        for (uint32_t f : g_.edgeFaces[e])
+          if (f != F::kNone) cutPatch[seg_.facePatch[f]] = 1;
+    po.faceMask.resize(in.triangleCount());
+    for (uint32_t f = 0; f < in.triangleCount(); ++f) po.faceMask[f] = cutPatch[seg_.facePatch[f]];
     po.maxNewVertices = std::max<size_t>(200000, 2 * in.vertexCount());
     // a tiny target on a big surface must not split without end: no more new vertices than
     // the budget (the output limits are checked once the sizing is known)
     po.maxEdgeLength = target > 0 ? std::max(kPreconditionEdgeFactor * target, std::sqrt(area / (0.4 * double(po.maxNewVertices)))) : 0.0;
     pre_ = precondition(in, userFeatures, po);
-    fo.featureEdges = pre_.protectedEdges;
+    // no patch needs cuts, so nothing was changed: the segmentation of the input stands
+    if (pre_.splits > 0 || pre_.flips > 0) {
+      fo.featureEdges = pre_.protectedEdges;
+      g_ = F::buildEdgeGraph(pre_.mesh);
+      seg_ = F::segment(g_, fo, progress_);
+    }
   }
-  g_ = F::buildEdgeGraph(pre_.mesh);
-  seg_ = F::segment(g_, fo, progress_);
   F::SizingOptions so;
   so.targetEdgeLength = opt_.targetEdgeLength;
   so.targetEdgeLengthRel = opt_.targetEdgeLengthRel;

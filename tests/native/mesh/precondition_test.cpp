@@ -116,3 +116,35 @@ TEST_CASE("precondition: sharp edges never flip (the cube keeps its faces), the 
   CHECK(q.capped);
   CHECK(q.mesh.vertexCount() == in.vertexCount() + 500);
 }
+
+TEST_CASE("precondition: faceMask limits the changes to the marked triangles; none marked is the input as it is") {
+  const MeshBuffers in = needleFan(40);
+  PreconditionOptions o;
+  o.maxEdgeLength = 0.2;
+  o.faceMask.assign(in.triangleCount(), 0);
+  const std::vector<std::array<uint32_t, 2>> prot = {{0u, 20u}, {3u, 30u}};  // the second is not an edge
+  Preconditioned none = precondition(in, prot, o);
+  CHECK(none.splits == 0);
+  CHECK(none.flips == 0);
+  CHECK(none.mesh.positions == in.positions);
+  CHECK(none.mesh.triangles == in.triangles);
+  REQUIRE(none.faceOrigin.size() == in.triangleCount());
+  for (uint32_t f = 0; f < in.triangleCount(); ++f) CHECK(none.faceOrigin[f] == f);
+  REQUIRE(none.protectedEdges.size() == 1);  // the editor's rule: pairs that are not edges are dropped
+  CHECK(none.protectedEdges[0] == std::array<uint32_t, 2>{0u, 20u});
+  // the first half marked: every triangle of the result lies in a marked input triangle or is one
+  // of the unmarked input triangles unchanged
+  for (uint32_t f = 0; f < in.triangleCount(); ++f) o.faceMask[f] = f < in.triangleCount() / 2;
+  Preconditioned half = precondition(in, prot, o);
+  CHECK(half.splits > 0);
+  std::set<std::array<uint32_t, 3>> unmarked;
+  for (uint32_t f = in.triangleCount() / 2; f < in.triangleCount(); ++f)
+    unmarked.insert({in.triangles[3 * f], in.triangles[3 * f + 1], in.triangles[3 * f + 2]});
+  size_t kept = 0;
+  for (size_t f = 0; f < half.mesh.triangleCount(); ++f) {
+    const std::array<uint32_t, 3> t{half.mesh.triangles[3 * f], half.mesh.triangles[3 * f + 1], half.mesh.triangles[3 * f + 2]};
+    if (half.faceOrigin[f] >= in.triangleCount() / 2) kept += unmarked.count(t);
+  }
+  // an unmarked triangle changes only where it shares a split edge with a marked one (one here)
+  CHECK(kept + 1 >= unmarked.size());
+}
