@@ -49,24 +49,52 @@ struct EdgeRef {
   uint8_t corner;  // local index of the opposite corner in `face`
 };
 
+//! Every face side as an EdgeRef, ordered by (a, b, face): a counting sort on `a` (O(n)), then a
+//! sort inside each vertex's bucket, which holds about its degree of entries.
 std::vector<EdgeRef> sortedEdgeRefs(const MeshBuffers& m) {
-  std::vector<EdgeRef> refs;
-  refs.reserve(m.triangles.size());
-  for (size_t f = 0; f < m.triangleCount(); ++f) {
-    if (!triangleValid(m, f)) continue;
-    const uint32_t* t = &m.triangles[3 * f];
-    for (int k = 0; k < 3; ++k) {
-      uint32_t a = t[(k + 1) % 3], b = t[(k + 2) % 3];
-      if (a == b) continue;
-      refs.push_back({std::min(a, b), std::max(a, b), uint32_t(f), uint8_t(k)});
+  const size_t nv = m.vertexCount();
+  std::vector<uint32_t> start(nv + 1, 0);
+  auto forEachSide = [&](auto&& visit) {
+    for (size_t f = 0; f < m.triangleCount(); ++f) {
+      if (!triangleValid(m, f)) continue;
+      const uint32_t* t = &m.triangles[3 * f];
+      for (int k = 0; k < 3; ++k) {
+        uint32_t a = t[(k + 1) % 3], b = t[(k + 2) % 3];
+        if (a != b) visit(EdgeRef{std::min(a, b), std::max(a, b), uint32_t(f), uint8_t(k)});
+      }
+    }
+  };
+  forEachSide([&](const EdgeRef& r) { ++start[r.a + 1]; });
+  for (size_t v = 0; v < nv; ++v) start[v + 1] += start[v];
+  std::vector<EdgeRef> refs(start[nv]);
+  std::vector<uint32_t> fill(start.begin(), start.end() - 1);
+  forEachSide([&](const EdgeRef& r) { refs[fill[r.a]++] = r; });
+  // faces arrive in increasing order, so within a bucket ordering by b alone (stably) is enough
+  auto byB = [](const EdgeRef& x, const EdgeRef& y) { return x.b < y.b; };
+  for (size_t v = 0; v < nv; ++v) {
+    EdgeRef* lo = refs.data() + start[v];
+    EdgeRef* hi = refs.data() + start[v + 1];
+    if (hi - lo <= 24) {
+      for (EdgeRef* i = lo + 1; i < hi; ++i)  // insertion sort: stable, fast on short buckets
+        for (EdgeRef* j = i; j > lo && byB(*j, *(j - 1)); --j) std::swap(*j, *(j - 1));
+    } else {
+      std::stable_sort(lo, hi, byB);
     }
   }
-  std::sort(refs.begin(), refs.end(), [](const EdgeRef& x, const EdgeRef& y) {
-    if (x.a != y.a) return x.a < y.a;
-    if (x.b != y.b) return x.b < y.b;
-    return x.face < y.face;
-  });
   return refs;
+}
+
+//! Sine and cosine of the angle opposite to edge `r` in its face; false when degenerate.
+bool oppositeSinCos(const MeshBuffers& m, const EdgeRef& r, double& sinA, double& cosA) {
+  const uint32_t* t = &m.triangles[3 * size_t(r.face)];
+  if (t[0] == t[1] || t[1] == t[2] || t[2] == t[0]) return false;
+  const Vec3 o = vertex(m, t[r.corner]);
+  const Vec3 u = sub(vertex(m, t[(r.corner + 1) % 3]), o), v = sub(vertex(m, t[(r.corner + 2) % 3]), o);
+  const double lu = norm(u), lv = norm(v), cr = norm(cross(u, v));
+  if (!(cr > 0) || !(lu > 0) || !(lv > 0) || !std::isfinite(cr)) return false;
+  sinA = cr / (lu * lv);
+  cosA = dot(u, v) / (lu * lv);
+  return std::isfinite(sinA) && std::isfinite(cosA);
 }
 
 struct UnionFind {
@@ -228,9 +256,12 @@ EdgeStats edgeStats(const MeshBuffers& mesh) {
     s.maxLength = std::max(s.maxLength, len);
     if (j - i == 2) {
       ++interior;
-      double a0[3], a1[3];
-      bool ok0 = cornerAngles(mesh, refs[i].face, a0), ok1 = cornerAngles(mesh, refs[i + 1].face, a1);
-      if (ok0 && ok1 && a0[refs[i].corner] + a1[refs[i + 1].corner] <= kPi + 1e-12) ++delaunay;
+      // Delaunay: the two opposite angles sum to at most pi (within 1e-12), i.e.
+      // sin(a0 + a1) = sin a0 cos a1 + cos a0 sin a1 >= -1e-12 (the sum lies in (0, 2 pi))
+      double s0, c0, s1, c1;
+      if (oppositeSinCos(mesh, refs[i], s0, c0) && oppositeSinCos(mesh, refs[i + 1], s1, c1) &&
+          s0 * c1 + c0 * s1 >= -1e-12)
+        ++delaunay;
     }
     i = j;
   }
