@@ -1,6 +1,8 @@
 #include "binding_util.h"
 
 #include <cmath>
+#include <cstdio>
+#include <cstdlib>
 
 namespace conformesh::bindings {
 
@@ -55,15 +57,33 @@ val field(const val& options, const char* name) {
 }
 }  // namespace
 
+namespace {
+std::string formatNumber(double d) {
+  char buf[32];
+  for (int digits = 6; digits <= 17; ++digits) {  // the shortest form that reads back as d
+    std::snprintf(buf, sizeof buf, "%.*g", digits, d);
+    if (std::strtod(buf, nullptr) == d) break;
+  }
+  return buf;
+}
+}  // namespace
+
 double numberOption(const val& options, const char* name, double fallback, Stage stage, double min, double max) {
   val v = field(options, name);
   if (v.isUndefined() || v.isNull()) return fallback;
   if (!v.isNumber()) fail(Code::InvalidArgument, stage, std::string("option ") + name + " must be a number");
   double d = v.as<double>();
-  if (!std::isfinite(d) || d < min || d > max)
-    fail(Code::InvalidArgument, stage,
-         std::string("option ") + name + " = " + std::to_string(d) + " is out of range [" + std::to_string(min) +
-             ", " + std::to_string(max) + "]");
+  if (std::isfinite(d) && d >= min && d <= max) return d;
+  std::string range = min <= -1e308 ? (max >= 1e308 ? std::string("finite") : "<= " + formatNumber(max))
+                      : max >= 1e308 ? ">= " + formatNumber(min)
+                                     : "in [" + formatNumber(min) + ", " + formatNumber(max) + "]";
+  fail(Code::InvalidArgument, stage, std::string("option ") + name + " = " + formatNumber(d) + " must be " + range);
+}
+
+double integerOption(const val& options, const char* name, double fallback, Stage stage, double min, double max) {
+  const double d = numberOption(options, name, fallback, stage, min, max);
+  if (d != std::floor(d))
+    fail(Code::InvalidArgument, stage, std::string("option ") + name + " = " + formatNumber(d) + " must be an integer");
   return d;
 }
 

@@ -80,6 +80,9 @@ emscripten::val meshToJs(const MeshBuffers& mesh);
 //! or outside [min, max]. The facade passes plain objects with known keys only.
 double numberOption(const emscripten::val& options, const char* name, double fallback, Stage stage,
                     double min = -1e308, double max = 1e308);
+//! numberOption that also rejects a value with a fractional part (counts, caps).
+double integerOption(const emscripten::val& options, const char* name, double fallback, Stage stage,
+                     double min = -1e308, double max = 1e308);
 bool boolOption(const emscripten::val& options, const char* name, bool fallback, Stage stage);
 
 //! Wrap a JS function (stage: number, fraction: number) => boolean as a ProgressFn; undefined or

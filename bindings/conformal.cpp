@@ -66,7 +66,7 @@ val flattenJs(val positions, val triangles, val options, val progress) {
     o.boundary = boundaryOption(options);
     o.flips = bindings::boolOption(options, "flips", o.flips, Stage::Flatten);
     o.tolerance = bindings::numberOption(options, "tolerance", o.tolerance, Stage::Flatten, 1e-15, 1);
-    o.maxIterations = int(bindings::numberOption(options, "maxIterations", o.maxIterations, Stage::Flatten, 1, 10000));
+    o.maxIterations = int(bindings::integerOption(options, "maxIterations", o.maxIterations, Stage::Flatten, 1, 10000));
     o.balanceMobius = bindings::boolOption(options, "balanceMobius", o.balanceMobius, Stage::Flatten);
     o.requireValidLayout = bindings::boolOption(options, "requireValidLayout", o.requireValidLayout, Stage::Flatten);
     const double cornerDeg = bindings::numberOption(options, "cornerAngle", 30.0, Stage::Flatten, 1e-9, 179.999999);

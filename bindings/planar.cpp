@@ -53,7 +53,7 @@ val refine2dJs(val points, val segments, val segmentMarkers, val holes, val opti
     o.maxEdge = bindings::numberOption(options, "maxEdge", o.maxEdge, Stage::Refine);
     if (o.maxArea > 0 && o.maxEdge > 0)
       fail(Code::InvalidArgument, Stage::Refine, "give maxArea or maxEdge, not both");
-    o.maxInsertions = size_t(bindings::numberOption(options, "maxInsertions", double(o.maxInsertions), Stage::Refine, 0,
+    o.maxInsertions = size_t(bindings::integerOption(options, "maxInsertions", double(o.maxInsertions), Stage::Refine, 0,
                                                     9007199254740992.0));
     o.offcenters = bindings::boolOption(options, "offcenters", o.offcenters, Stage::Refine);
     o.diametralLens = bindings::boolOption(options, "diametralLens", o.diametralLens, Stage::Refine);

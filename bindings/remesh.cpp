@@ -126,7 +126,7 @@ val remeshJs(val positions, val triangles, val vertexSizing, val featureEdges, v
     o.minFeatureLength = bindings::numberOption(options, "minFeatureLength", o.minFeatureLength, st);
     o.maxScaleRatio = bindings::numberOption(options, "maxScaleRatio", o.maxScaleRatio, st, 1);
     o.maxCertificateRounds =
-        int(bindings::numberOption(options, "maxCertificateRounds", o.maxCertificateRounds, st, 0, 100));
+        int(bindings::integerOption(options, "maxCertificateRounds", o.maxCertificateRounds, st, 0, 100));
     o.computeHausdorff = bindings::boolOption(options, "computeHausdorff", o.computeHausdorff, st);
     o.optimize = bindings::boolOption(options, "optimize", o.optimize, st);
     o.returnPatches = bindings::boolOption(options, "patches", o.returnPatches, st);
@@ -138,10 +138,10 @@ val remeshJs(val positions, val triangles, val vertexSizing, val featureEdges, v
       else if (s == "circle") o.boundary = BoundaryCondition::Circle;
       else fail(Code::InvalidArgument, st, "boundary must be 'free', 'corners' or 'circle'");
     }
-    o.optimizeIterations = int(bindings::numberOption(options, "optimizeIterations", o.optimizeIterations, st, 0, 1000));
+    o.optimizeIterations = int(bindings::integerOption(options, "optimizeIterations", o.optimizeIterations, st, 0, 1000));
     o.optimizeTolerance = bindings::numberOption(options, "optimizeTolerance", o.optimizeTolerance, st, 0);
     o.hausdorffSamples =
-        size_t(bindings::numberOption(options, "hausdorffSamples", double(o.hausdorffSamples), st, 1, 1e8));
+        size_t(bindings::integerOption(options, "hausdorffSamples", double(o.hausdorffSamples), st, 1, 1e8));
     // limits: 0 passes through and is rejected by remesh (InvalidArgument), never "unlimited";
     // values beyond size_t (32 bits here) saturate
     auto count = [&](const char* name, size_t fallback) {

@@ -30,8 +30,8 @@ val warningsToJs(const std::vector<ValidationWarning>& warnings) {
 ValidateOptions validateOptions(const val& o) {
   ValidateOptions v;
   const double cap = double(size_t(1) << 31);
-  v.maxVertices = size_t(bindings::numberOption(o, "maxVertices", double(v.maxVertices), Stage::Validate, 1, cap));
-  v.maxTriangles = size_t(bindings::numberOption(o, "maxTriangles", double(v.maxTriangles), Stage::Validate, 1, cap));
+  v.maxVertices = size_t(bindings::integerOption(o, "maxVertices", double(v.maxVertices), Stage::Validate, 1, cap));
+  v.maxTriangles = size_t(bindings::integerOption(o, "maxTriangles", double(v.maxTriangles), Stage::Validate, 1, cap));
   v.dropZeroAreaFaces = bindings::boolOption(o, "dropZeroAreaFaces", v.dropZeroAreaFaces, Stage::Validate);
   v.dropDuplicateFaces = bindings::boolOption(o, "dropDuplicateFaces", v.dropDuplicateFaces, Stage::Validate);
   v.fixOrientation = bindings::boolOption(o, "fixOrientation", v.fixOrientation, Stage::Validate);

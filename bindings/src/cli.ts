@@ -119,6 +119,13 @@ function numberFlag(args: Args, name: string, fallback: number): number {
   return d;
 }
 
+/** numberFlag for a count: the native CLI's error for a fractional value. */
+function integerFlag(args: Args, name: string): number {
+  const d = numberFlag(args, name, 0);
+  if (!Number.isInteger(d)) throw new ConformeshError('InvalidArgument', 'api', `option ${name} needs an integer`);
+  return d;
+}
+
 /** writeFileBytes of the native CLI: same IoError message. */
 async function writeFileBytes(path: string, bytes: Uint8Array | string): Promise<void> {
   try {
@@ -167,7 +174,7 @@ const refine2dUsage =
 const flattenUsage =
   'flatten IN -o OUT.obj [--boundary circle|free|corners] [--corner-angle DEG] [--no-flips] [--json]';
 const remeshUsage =
-  'remesh IN -o OUT [--min-angle D] [--edge-length L | --edge-length-rel R] [--feature-angle D] [--min-feature-length L] [--chord-tol T] [--boundary free|corners|circle] [--max-triangles N] [--max-vertices N] [--json] [--no-hausdorff] [--no-optimize]';
+  'remesh IN -o OUT [--min-angle D] [--edge-length L | --edge-length-rel R] [--feature-angle D] [--min-feature-length L] [--chord-tol T] [--boundary free|corners|circle] [--max-triangles N] [--max-vertices N] [--json] [--no-hausdorff] [--no-optimize] [--optimize-iterations N] [--optimize-tolerance T]';
 
 const infoUsage = 'info FILE [--json] [--weld TOL] [--format NAME]';
 
@@ -276,7 +283,7 @@ const commands: Record<string, Command> = {
   remesh: {
     usage: remeshUsage,
     summary: 'remesh a surface: conformal flattening per patch, planar Delaunay refinement, lift',
-    valueFlags: ['-o', '--min-angle', '--edge-length', '--edge-length-rel', '--feature-angle', '--min-feature-length', '--chord-tol', '--max-triangles', '--max-vertices', '--boundary'],
+    valueFlags: ['-o', '--min-angle', '--edge-length', '--edge-length-rel', '--feature-angle', '--min-feature-length', '--chord-tol', '--max-triangles', '--max-vertices', '--boundary', '--optimize-iterations', '--optimize-tolerance'],
     switches: ['--json', '--no-hausdorff', '--no-optimize'],
     async run(args, api) {
       if (args.positional.length !== 1) throw new ConformeshError('InvalidArgument', 'api', 'remesh needs exactly one input file');
@@ -291,6 +298,8 @@ const commands: Record<string, Command> = {
         chordTolerance: numberFlag(args, '--chord-tol', -1),
         computeHausdorff: !args.flags.has('--no-hausdorff'),
         optimize: !args.flags.has('--no-optimize'),
+        ...(args.flags.has('--optimize-iterations') ? { optimizeIterations: integerFlag(args, '--optimize-iterations') } : {}),
+        ...(args.flags.has('--optimize-tolerance') ? { optimizeTolerance: numberFlag(args, '--optimize-tolerance', 0) } : {}),
         boundary: boundaryFlag(args, 'free'),
         // as the native CLI: values below 1 are passed as 0 (InvalidArgument, never "unlimited")
         maxTriangles: Math.max(0, Math.min(numberFlag(args, '--max-triangles', 32 * 2 ** 20), 1e18)),

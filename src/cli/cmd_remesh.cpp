@@ -1,5 +1,6 @@
 // conformesh remesh: remesh a surface mesh file and print the quality report.
 #include <algorithm>
+#include <cmath>
 #include <cstdio>
 #include <string>
 
@@ -92,7 +93,7 @@ int run(const std::vector<std::string>& argv) {
   try {
     Args args = parseArgs(argv,
                           {"-o", "--min-angle", "--edge-length", "--edge-length-rel", "--feature-angle", "--min-feature-length", "--chord-tol",
-                           "--max-triangles", "--max-vertices", "--boundary"},
+                           "--max-triangles", "--max-vertices", "--boundary", "--optimize-iterations", "--optimize-tolerance"},
                           {"--json", "--no-hausdorff", "--no-optimize"});
     if (args.positional.size() != 1) fail(Code::InvalidArgument, Stage::Api, "remesh needs exactly one input file");
     if (args.has("--edge-length") && args.has("--edge-length-rel"))
@@ -106,6 +107,12 @@ int run(const std::vector<std::string>& argv) {
     opt.chordTolerance = args.number("--chord-tol", opt.chordTolerance);
     opt.computeHausdorff = !args.has("--no-hausdorff");
     opt.optimize = !args.has("--no-optimize");
+    // a count out of range is passed on for remesh to reject; a fractional one is rejected here
+    const double iterations = args.number("--optimize-iterations", opt.optimizeIterations);
+    if (iterations != std::floor(iterations))
+      fail(Code::InvalidArgument, Stage::Api, "option --optimize-iterations needs an integer");
+    opt.optimizeIterations = std::abs(iterations) <= 1e6 ? int(iterations) : -1;
+    opt.optimizeTolerance = args.number("--optimize-tolerance", opt.optimizeTolerance);
     opt.boundary = boundaryFlag(args, "free");
     // limits: 0 and negative values are rejected by remesh (InvalidArgument), never "unlimited"
     auto limit = [&](const char* flag, size_t fallback) {
@@ -138,7 +145,7 @@ int run(const std::vector<std::string>& argv) {
 const CommandRegistrar registrar({"remesh",
                                   "remesh IN -o OUT [--min-angle D] [--edge-length L | --edge-length-rel R] "
                                   "[--feature-angle D] [--min-feature-length L] [--chord-tol T] [--boundary free|corners|circle] [--max-triangles N] [--max-vertices N] [--json] "
-                                  "[--no-hausdorff] [--no-optimize]",
+                                  "[--no-hausdorff] [--no-optimize] [--optimize-iterations N] [--optimize-tolerance T]",
                                   "remesh a surface: conformal flattening per patch, planar Delaunay refinement, lift",
                                   run});
 

@@ -165,6 +165,29 @@ describe('package CLI: refine2d, flatten, remesh', () => {
       expect(n.topologyPreserved).toBe(true);
       expect(n.trianglesBelowBoundOutsideExempt).toBe(0);
     }
+    // the optimizer's flags reach it: no passes is the unoptimized mesh, a pass count is honoured
+    // alike in both builds
+    const opt = (extra: string[]) => {
+      const a = ['remesh', input, '--edge-length-rel', '0.1', '--no-hausdorff', '--json', ...extra];
+      const [x, y] = [JSON.parse(run(a).stdout), JSON.parse(spawnSync(native, a, { encoding: 'utf8' }).stdout)];
+      delete x.seconds;
+      delete y.seconds;
+      expect(x).toEqual(y);
+      return x;
+    };
+    for (const bad of [['--optimize-iterations', '2.5'], ['--optimize-iterations', '-1'], ['--optimize-tolerance', '-0.1']]) {
+      const a = ['remesh', input, ...bad, '--json'];
+      const [x, y] = [JSON.parse(run(a).stdout), JSON.parse(spawnSync(native, a, { encoding: 'utf8' }).stdout)];
+      // the same error; the wording comes from the JS options check or the C++ one
+      expect([x.error.name, x.error.stage, y.error.name, y.error.stage]).toEqual(['InvalidArgument', 'api', 'InvalidArgument', 'api']);
+      expect(x.error.message).toMatch(bad[0] === '--optimize-tolerance' ? /optimizeTolerance/ : /optimize-?[iI]terations/);
+      if (bad[1] === '2.5') expect(x).toEqual(y);
+    }
+    const none = opt(['--optimize-iterations', '0']), off = opt(['--no-optimize']);
+    expect(none.meanMinAngle).toBe(off.meanMinAngle);
+    expect(none.optimizeMoves).toBe(0);
+    const more = opt(['--optimize-iterations', '4', '--optimize-tolerance', '0']);
+    expect(more.optimizeMoves).toBeGreaterThanOrEqual(n.optimizeMoves);
     for (const bad of [
       ['remesh', input, '--edge-length', '1', '--edge-length-rel', '0.1', '--json'],
       ['remesh', input, '--boundary', 'disk', '--json'],

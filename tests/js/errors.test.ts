@@ -124,6 +124,14 @@ describe('error codes reachable from JS', async () => {
     for (const o of [{ maxVertices: -1 }, { maxTriangles: Number.NaN }, { fixOrientation: 'yes' }, { dropZeroAreaFaces: {} }]) {
       expect((await codeOf(() => cm.validateMesh(m, o as never))).code).toBe('InvalidArgument');
     }
+    // counts must be whole numbers (not silently truncated); the message names the option and
+    // the allowed range in plain numbers
+    const frac = await codeOf(() => cm.remesh(m, { optimizeIterations: 2.5 }));
+    expect(frac.code).toBe('InvalidArgument');
+    expect(frac.message).toMatch(/optimizeIterations = 2\.5 must be an integer/);
+    const range = await codeOf(() => cm.remesh(m, { optimizeTolerance: -0.1 }));
+    expect(range.message).toMatch(/optimizeTolerance = -0\.1 must be >= 0$/);
+    expect((await codeOf(() => cm.remesh(m, { minAngle: 40 }))).message).toMatch(/minAngle = 40 must be in \[0, 34\]/);
   });
 
   it('Cancelled: an aborted worker call', async () => {
