@@ -519,6 +519,18 @@ function sectionWasm() {
       row.ratioFirstCallToNative = ratio(row.wasm.first, row.native.seconds);
       rows.push([`${row.tool} (later calls)`, row.native.seconds ?? 'failed', row.wasm.seconds ?? 'failed', row.ratioWasmToNative]);
       rows.push([`${row.tool} (first call)`, row.native.seconds ?? 'failed', row.wasm.first ?? 'failed', row.ratioFirstCallToNative]);
+      // The package CLI (dist/cli.js, one remesh per process: always a first call; it has V8
+      // optimize the whole module from the start) against the native CLI, both as whole processes.
+      const cliJs = path.join(ROOT, 'dist/cli.js');
+      if (existsSync(cliJs)) {
+        const args = ['remesh', fandisk, '--edge-length-rel', '0.004', '--no-hausdorff', '--json'];
+        const pc = repeatRun(process.execPath, ['--no-experimental-fetch', cliJs, ...args], REPEAT, { timeout: 600 });
+        const nc = repeatRun(native, args, REPEAT, { timeout: 600 });
+        row.packageCli = { ok: pc.ok, wallSeconds: pc.ok ? pc.wall : null, remeshSeconds: pc.ok ? pc.med('seconds') : null };
+        row.nativeCli = { ok: nc.ok, wallSeconds: nc.ok ? nc.wall : null, remeshSeconds: nc.ok ? nc.med('seconds') : null };
+        row.ratioCliWall = ratio(row.packageCli.wallSeconds, row.nativeCli.wallSeconds);
+        rows.push([`${row.tool}, CLI process wall`, row.nativeCli.wallSeconds ?? 'failed', row.packageCli.wallSeconds ?? 'failed', row.ratioCliWall]);
+      }
     }
     sec.rows.push(row);
   }
