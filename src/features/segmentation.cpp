@@ -155,6 +155,105 @@ struct Cutter {
   }
 };
 
+// Patches: faces connected across edges that are not curve edges (seg.facePatch, seg.patches).
+void floodPatches(const EdgeGraph& g, Segmentation& seg) {
+  seg.facePatch.assign(g.faceCount, kNone);
+  seg.patches.clear();
+  std::vector<uint32_t> stack;
+  for (uint32_t f0 = 0; f0 < g.faceCount; ++f0) {
+    if (seg.facePatch[f0] != kNone) continue;
+    uint32_t p = uint32_t(seg.patches.size());
+    seg.patches.emplace_back();
+    seg.facePatch[f0] = p;
+    stack.push_back(f0);
+    while (!stack.empty()) {
+      uint32_t f = stack.back();
+      stack.pop_back();
+      seg.patches[p].push_back(f);
+      for (uint32_t e : g.faceEdges[f]) {
+        if (seg.isCurveEdge(e)) continue;
+        uint32_t o = g.edgeFaces[e][0] == f ? g.edgeFaces[e][1] : g.edgeFaces[e][0];
+        if (o != kNone && seg.facePatch[o] == kNone) {
+          seg.facePatch[o] = p;
+          stack.push_back(o);
+        }
+      }
+    }
+  }
+}
+
+// Merge patches narrower than minWidth into a neighbour (FeatureOptions::minPatchWidth). Width:
+// 2·area / perimeter, the width of a strip (a disk's radius, half a sliver triangle's height).
+// Delaunay refinement meshes a strip of width w with boundary segments of about 2w (a longer one
+// is encroached by the far side), so a strip narrower than half the smallest allowed edge is
+// meshed below the sizing's floor, with thousands of samples along it and a graded band
+// around it. Each narrow patch joins the neighbour across its longest border of droppable
+// sharp edges (not user features, not the open boundary): the feature stays drawn by the
+// strip's other border, within w of it. Narrowest first; passes until none merges (capped).
+// Returns the number of merges.
+uint32_t mergeNarrowPatches(const EdgeGraph& g, Segmentation& seg, double minWidth, const std::vector<uint8_t>& userEdge) {
+  constexpr int kMaxPasses = 32;
+  uint32_t merged = 0;
+  for (int pass = 0; pass < kMaxPasses; ++pass) {
+    floodPatches(g, seg);
+    const size_t np = seg.patches.size();
+    if (np < 2) break;
+    std::vector<double> area(np, 0.0), perimeter(np, 0.0);
+    for (uint32_t f = 0; f < g.faceCount; ++f) area[seg.facePatch[f]] += g.faceArea(f);
+    for (uint32_t e = 0; e < g.edgeCount(); ++e) {
+      const uint32_t f0 = g.edgeFaces[e][0], f1 = g.edgeFaces[e][1];
+      const uint32_t p0 = seg.facePatch[f0], p1 = f1 == kNone ? kNone : seg.facePatch[f1];
+      if (p0 == p1) continue;  // inside a patch (a slit counts for nothing)
+      perimeter[p0] += g.edgeLength(e);
+      if (p1 != kNone) perimeter[p1] += g.edgeLength(e);
+    }
+    std::vector<std::pair<double, uint32_t>> narrow;
+    for (uint32_t p = 0; p < np; ++p)
+      if (perimeter[p] > 0 && 2.0 * area[p] < minWidth * perimeter[p]) narrow.push_back({2.0 * area[p] / perimeter[p], p});
+    if (narrow.empty()) break;
+    std::sort(narrow.begin(), narrow.end());
+    // droppable border length per (patch, neighbour)
+    std::map<std::pair<uint32_t, uint32_t>, double> shared;
+    for (uint32_t e = 0; e < g.edgeCount(); ++e) {
+      if (seg.edgeKind[e] != EdgeKind::Feature || userEdge[e] || g.isBoundary(e)) continue;
+      const uint32_t p0 = seg.facePatch[g.edgeFaces[e][0]], p1 = seg.facePatch[g.edgeFaces[e][1]];
+      if (p0 == p1) continue;
+      shared[{p0, p1}] += g.edgeLength(e);
+      shared[{p1, p0}] += g.edgeLength(e);
+    }
+    // in one pass a patch either merges into another or receives merges, never both
+    std::vector<uint8_t> receives(np, 0);
+    std::vector<uint32_t> target(np, kNone);
+    uint32_t mergedNow = 0;
+    for (const auto& [width, p] : narrow) {
+      if (receives[p]) continue;
+      uint32_t best = kNone;
+      double bestLen = 0;
+      for (auto it = shared.lower_bound({p, 0}); it != shared.end() && it->first.first == p; ++it)
+        if (target[it->first.second] == kNone && it->second > bestLen) best = it->first.second, bestLen = it->second;
+      // The border left must still draw the feature, as a strip's other side does: an island
+      // (all its border shared with one patch) would lose its feature altogether, and whether
+      // a small closed feature stays is minFeatureLength's call, not this one's.
+      if (best == kNone || perimeter[p] - bestLen < 0.5 * bestLen) continue;
+      receives[best] = 1;
+      target[p] = best;
+      ++mergedNow;
+    }
+    if (mergedNow == 0) break;
+    for (uint32_t e = 0; e < g.edgeCount(); ++e) {
+      if (seg.edgeKind[e] != EdgeKind::Feature || userEdge[e] || g.isBoundary(e)) continue;
+      const uint32_t p0 = seg.facePatch[g.edgeFaces[e][0]], p1 = seg.facePatch[g.edgeFaces[e][1]];
+      if ((target[p0] == p1 && p1 != kNone) || (target[p1] == p0 && p0 != kNone)) {
+        seg.edgeKind[e] = EdgeKind::None;
+        --seg.sharpEdgeCount;
+        ++seg.droppedFeatureEdges;
+      }
+    }
+    merged += mergedNow;
+  }
+  return merged;
+}
+
 // Continue every dangling feature curve (a vertex with exactly one curve edge) along the
 // straightest path of input edges until it meets a curve, so no patch contains a slit.
 void extendDanglingCurves(const EdgeGraph& g, Segmentation& seg) {
@@ -581,30 +680,7 @@ void rebuildCurves(const EdgeGraph& g, Segmentation& seg) {
     uint32_t back = twoEdges[verts[0]][0] == e0 ? twoEdges[verts[0]][1] : twoEdges[verts[0]][0];
     if (seg.edgeCurve[back] == kNone) trace(verts[0], back);
   }
-  // patches: flood fill across non-curve edges
-  seg.facePatch.assign(g.faceCount, kNone);
-  seg.patches.clear();
-  std::vector<uint32_t> stack;
-  for (uint32_t f0 = 0; f0 < g.faceCount; ++f0) {
-    if (seg.facePatch[f0] != kNone) continue;
-    uint32_t p = uint32_t(seg.patches.size());
-    seg.patches.emplace_back();
-    seg.facePatch[f0] = p;
-    stack.push_back(f0);
-    while (!stack.empty()) {
-      uint32_t f = stack.back();
-      stack.pop_back();
-      seg.patches[p].push_back(f);
-      for (uint32_t e : g.faceEdges[f]) {
-        if (seg.isCurveEdge(e)) continue;
-        uint32_t o = g.edgeFaces[e][0] == f ? g.edgeFaces[e][1] : g.edgeFaces[e][0];
-        if (o != kNone && seg.facePatch[o] == kNone) {
-          seg.facePatch[o] = p;
-          stack.push_back(o);
-        }
-      }
-    }
-  }
+  floodPatches(g, seg);
   for (auto& c : seg.curves) {
     const auto& fs = g.edgeFaces[c.edges[0]];
     c.patches = {fs[0] == kNone ? kNone : seg.facePatch[fs[0]], fs[1] == kNone ? kNone : seg.facePatch[fs[1]]};
@@ -616,6 +692,8 @@ Segmentation segment(const EdgeGraph& g, const FeatureOptions& options, const Pr
     fail(Code::InvalidArgument, Stage::Segment, "featureAngle must be in [0, 180] degrees");
   if (!(options.cornerTurnDeg >= 0 && options.cornerTurnDeg <= 180))
     fail(Code::InvalidArgument, Stage::Segment, "cornerTurn must be in [0, 180] degrees");
+  if (!(options.minPatchWidth >= 0 && options.minPatchWidth < INFINITY))
+    fail(Code::InvalidArgument, Stage::Segment, "minPatchWidth must be finite and >= 0");
   Segmentation seg;
   seg.cornerTurnDeg = options.cornerTurnDeg;
   seg.junctionScale = options.junctionScale;
@@ -659,6 +737,7 @@ Segmentation segment(const EdgeGraph& g, const FeatureOptions& options, const Pr
         ++seg.droppedFeatureEdges;
       }
   }
+  std::vector<uint8_t> userEdge(g.edgeCount(), 0);
   for (const auto& fe : options.featureEdges) {
     if (fe[0] >= g.vertexCount || fe[1] >= g.vertexCount)
       fail(Code::InvalidArgument, Stage::Segment, "user feature edge refers to a vertex out of range");
@@ -666,11 +745,13 @@ Segmentation segment(const EdgeGraph& g, const FeatureOptions& options, const Pr
     if (e == kNone)
       fail(Code::InvalidArgument, Stage::Segment,
            "user feature edge (" + std::to_string(fe[0]) + ", " + std::to_string(fe[1]) + ") is not a mesh edge");
+    userEdge[e] = 1;
     if (seg.edgeKind[e] == EdgeKind::None) {
       seg.edgeKind[e] = EdgeKind::Feature;
       ++seg.sharpEdgeCount;
     }
   }
+  if (options.minPatchWidth > 0) seg.mergedNarrowPatches = mergeNarrowPatches(g, seg, options.minPatchWidth, userEdge);
   if (progress && !progress(Stage::Segment, 0.2)) fail(Code::Cancelled, Stage::Segment, "cancelled");
   extendDanglingCurves(g, seg);
   rebuildCurves(g, seg);

@@ -28,6 +28,11 @@ struct FeatureOptions {
   //! dropped.
   double minFeatureLength = 0.0;
   double minFeatureKeepDeg = 60.0;
+  //! Patches narrower than this (absolute; twice their area over their perimeter: the width of a
+  //! strip) are merged into a neighbour by dropping the sharp edges between them: a chamfer or
+  //! fillet strip far narrower than the output edges, a sliver face between two sharp edges.
+  //! The remesh passes half the smallest edge length its sizing allows. 0 keeps every patch.
+  double minPatchWidth = 0.0;
   //! User feature edges as vertex pairs (need not be sharp). A pair that is not an edge is an
   //! InvalidArgument error.
   std::vector<std::array<uint32_t, 2>> featureEdges;
@@ -62,7 +67,8 @@ struct Segmentation {
   double cornerTurnDeg = 50.0;  //!< the option used, kept for rebuildCurves after splits
   double junctionScale = 0.0;  //!< the option used, kept for splitPatch
   uint32_t reroutedCutEnds = 0;  //!< cut ends moved by improveCutJunctions
-  uint32_t droppedFeatureEdges = 0;  //!< sharp edges in chains shorter than minFeatureLength
+  uint32_t droppedFeatureEdges = 0;  //!< sharp edges dropped: short chains, borders of narrow patches
+  uint32_t mergedNarrowPatches = 0;  //!< patches narrower than minPatchWidth merged into a neighbour
 
   bool isCurveEdge(uint32_t e) const { return edgeKind[e] != EdgeKind::None; }
   std::vector<uint8_t> curveMask() const;

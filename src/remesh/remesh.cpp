@@ -74,6 +74,7 @@ struct PatchWork {
   std::vector<double> hSub;      // 3D target length per sub vertex
   std::vector<double> scaleSub;  // planar length per 3D length, per sub vertex
   std::vector<Spot> spots;
+  std::vector<double> requiredPoints;  // planar points every refinement of the patch must contain
   // latest meshing
   std::vector<uint32_t> localToGlobal;  // planar vertex -> output vertex (samples first)
   std::vector<F::Vec3> interiorPositions;  // positions of planar vertices that are interior
@@ -592,6 +593,7 @@ void Pipeline::meshPatch(uint32_t p, bool splitSegments) {
   }
   if (degenerateBoundary(bp)) fail(Code::InternalError, Stage::Refine, "patch " + std::to_string(p) + ": its boundary samples do not make a polygon");
   planar::Pslg pslg = boundaryPslg(bp);
+  pslg.points.insert(pslg.points.end(), w.requiredPoints.begin(), w.requiredPoints.end());
   planar::RefineOptions ro;
   // Diametral lenses: far fewer segment splits, so fewer samples a neighbour must take up and
   // fewer rounds. The planar bound has a margin over the 3D one for the small angle distortion
@@ -644,6 +646,7 @@ void Pipeline::meshPatch(uint32_t p, bool splitSegments) {
     w.dirty = false;
     bp = boundaryPoints(w);
     pslg = boundaryPslg(bp);
+    pslg.points.insert(pslg.points.end(), w.requiredPoints.begin(), w.requiredPoints.end());
   }
   if (!rr.status.ok()) fail(rr.status.code, Stage::Refine, "patch " + std::to_string(p) + ": " + rr.status.message);
   const auto& pmsh = rr.mesh;
@@ -771,6 +774,30 @@ std::vector<RemeshPatch> Pipeline::patchSnapshot(const MeshBuffers& out) const {
 //! A triangle with a corner below this (degrees) has collapsed: never a wanted output.
 constexpr double kCollapsedDeg = 1e-3;
 
+// Triangles whose three vertices another triangle also has; of each such pair, the one in the
+// patch with more triangles (the one to re-mesh with a vertex inside it). Ascending.
+std::vector<size_t> doubledTriangles(const MeshBuffers& m, const std::vector<uint32_t>& trianglePatch) {
+  std::vector<std::array<uint32_t, 4>> keys(m.triangleCount());
+  std::vector<size_t> patchSize;
+  for (size_t t = 0; t < m.triangleCount(); ++t) {
+    std::array<uint32_t, 3> v{m.triangles[3 * t], m.triangles[3 * t + 1], m.triangles[3 * t + 2]};
+    std::sort(v.begin(), v.end());
+    keys[t] = {v[0], v[1], v[2], uint32_t(t)};
+    if (trianglePatch[t] >= patchSize.size()) patchSize.resize(trianglePatch[t] + 1, 0);
+    ++patchSize[trianglePatch[t]];
+  }
+  std::sort(keys.begin(), keys.end());
+  std::vector<size_t> out;
+  for (size_t i = 0; i + 1 < keys.size(); ++i) {
+    if (keys[i][0] != keys[i + 1][0] || keys[i][1] != keys[i + 1][1] || keys[i][2] != keys[i + 1][2]) continue;
+    const uint32_t a = keys[i][3], b = keys[i + 1][3];
+    out.push_back(patchSize[trianglePatch[a]] >= patchSize[trianglePatch[b]] ? a : b);
+  }
+  std::sort(out.begin(), out.end());
+  out.erase(std::unique(out.begin(), out.end()), out.end());
+  return out;
+}
+
 double triangleMinAngle(const MeshBuffers& m, size_t t, double* maxAngle = nullptr) {
   F::Vec3 p[3];
   for (int c = 0; c < 3; ++c) {
@@ -832,6 +859,9 @@ RemeshResult Pipeline::run(const MeshBuffers& input) {
   if (target > 0) checkOutputEstimate(estimateFromTarget(area, target, in.triangleCount()), opt_);
   fo.junctionScale = target;
   fo.minFeatureLength = opt_.minFeatureLength >= 0 ? opt_.minFeatureLength : kMinFeatureFactor * target;
+  // strips narrower than half the smallest edge the sizing allows (its minLength) are merged
+  // into a neighbour (features/segmentation.h)
+  fo.minPatchWidth = 0.5 * (opt_.minEdgeLength > 0 ? opt_.minEdgeLength : 0.1 * target);
   {  // input edges no longer than twice the target, flat pairs Delaunay (mesh/precondition.h),
      // in the patches that need cuts (only there do curves follow input edges that are not
      // features): a first segmentation of the input finds them
@@ -899,7 +929,7 @@ RemeshResult Pipeline::run(const MeshBuffers& input) {
   std::vector<uint8_t> exemptVertex;
   MeshBuffers bestOut;
   std::vector<uint32_t> bestTriPatch;
-  size_t bestBad = SIZE_MAX, bestCollapsed = SIZE_MAX;
+  size_t bestBad = SIZE_MAX, bestCollapsed = SIZE_MAX, bestDoubled = SIZE_MAX;
   std::vector<std::vector<uint32_t>> bestCurveSamples;
   std::vector<RemeshPatch> bestPatches;
   for (int cert = 0;; ++cert) {
@@ -962,7 +992,13 @@ RemeshResult Pipeline::run(const MeshBuffers& input) {
       if (a < kCollapsedDeg) ++collapsed;
       if (a < opt_.minAngleDeg && exemptCornerOf(out, t, exemptVertex) == kNone) ++bad;
     }
-    if (collapsed < bestCollapsed || (collapsed == bestCollapsed && bad < bestBad)) {
+    // the same three samples meshed as a triangle by two patches (a corner wedge between two
+    // curves that both patches border, closed by one triangle on each side): the stitched
+    // surface is not manifold there. Worse than any angle: a round with fewer always wins.
+    const std::vector<size_t> doubled = doubledTriangles(out, triPatch);
+    if (doubled.size() < bestDoubled ||
+        (doubled.size() == bestDoubled && (collapsed < bestCollapsed || (collapsed == bestCollapsed && bad < bestBad)))) {
+      bestDoubled = doubled.size();
       bestBad = bad;
       bestCollapsed = collapsed;
       bestOut = out;
@@ -974,11 +1010,30 @@ RemeshResult Pipeline::run(const MeshBuffers& input) {
       // cannot be fixed by size): keep the best round
       break;
     }
-    if (bad == 0 || cert >= opt_.maxCertificateRounds) break;
+    if ((bad == 0 && doubled.empty()) || cert >= opt_.maxCertificateRounds) break;
     // 3D angle certificate: where a lifted triangle is below the bound, ask for smaller planar
     // triangles there (a graded spot at its planar centroid) and re-mesh the patch.
     std::vector<size_t> firstTri(work_.size(), 0);
     for (size_t i = triPatch.size(); i-- > 0;) firstTri[triPatch[i]] = i;
+    // A doubled triangle closes a corner wedge of its patch alone: the patch must put a vertex
+    // inside it, halfway from the wedge's corner (its largest angle) to the far side; a finer
+    // size there would only split the two curves and close the wedge again one step closer.
+    for (size_t t : doubled) {
+      PatchWork& w = *work_[triPatch[t]];
+      const uint32_t* lt = &w.triangles[3 * (t - firstTri[triPatch[t]])];
+      const double* q[3] = {&w.planarPoints[2 * lt[0]], &w.planarPoints[2 * lt[1]], &w.planarPoints[2 * lt[2]]};
+      int corner = 0;
+      double widest = -2;
+      for (int c = 0; c < 3; ++c) {
+        const double ux = q[(c + 1) % 3][0] - q[c][0], uy = q[(c + 1) % 3][1] - q[c][1];
+        const double vx = q[(c + 2) % 3][0] - q[c][0], vy = q[(c + 2) % 3][1] - q[c][1];
+        const double cosA = (ux * vx + uy * vy) / (dmath::hypot(ux, uy) * dmath::hypot(vx, vy));
+        if (-cosA > widest) widest = -cosA, corner = c;
+      }
+      for (int k = 0; k < 2; ++k)
+        w.requiredPoints.push_back(0.5 * q[corner][k] + 0.25 * (q[(corner + 1) % 3][k] + q[(corner + 2) % 3][k]));
+      w.needsMesh = true;
+    }
     for (size_t t = 0; t < out.triangleCount(); ++t) {
       if (triangleMinAngle(out, t) >= opt_.minAngleDeg || exemptCornerOf(out, t, exemptVertex) != kNone) continue;
       PatchWork& w = *work_[triPatch[t]];

@@ -260,3 +260,57 @@ TEST_CASE("features: minFeatureLength drops chains of sharp edges shorter than i
   CHECK(t.edgeKind[ue] == EdgeKind::Feature);
   checkPatchesAreDisks(g, t);
 }
+
+namespace {
+// An open bent sheet: panel A (z = 0, x in [0, 1]), a 45° chamfer strip S of width `w`, panel B
+// (vertical, 1 high), extruded along y in [0, 1] with `n` rows; folds of 45° between them.
+MeshBuffers chamferedSheet(double w, int n) {
+  const double c = w / std::sqrt(2.0);
+  const std::vector<std::array<double, 2>> profile = {{0, 0}, {0.5, 0}, {1, 0}, {1 + c, c}, {1 + c, c + 0.5}, {1 + c, c + 1}};
+  MeshBuffers m;
+  for (int j = 0; j <= n; ++j)
+    for (const auto& p : profile) m.positions.insert(m.positions.end(), {p[0], double(j) / n, p[1]});
+  const uint32_t k = uint32_t(profile.size());
+  for (uint32_t j = 0; j < uint32_t(n); ++j)
+    for (uint32_t i = 0; i + 1 < k; ++i) {
+      const uint32_t a = j * k + i, b = a + 1, d = a + k, e = d + 1;
+      m.triangles.insert(m.triangles.end(), {a, b, e, a, e, d});
+    }
+  return m;
+}
+}  // namespace
+
+TEST_CASE("features: minPatchWidth merges a strip narrower than it into a neighbour, keeping its other border; never across user feature edges") {
+  const double w = 0.01;
+  EdgeGraph g = buildEdgeGraph(chamferedSheet(w, 8));
+  Segmentation all = segment(g, FeatureOptions{});
+  CHECK(all.patches.size() == 3);
+  CHECK(all.sharpEdgeCount == 16);  // two fold lines of 8 edges
+  CHECK(all.mergedNarrowPatches == 0);
+  FeatureOptions wide;
+  wide.minPatchWidth = 0.5 * w;  // the strip is wider: kept
+  CHECK(segment(g, wide).patches.size() == 3);
+  FeatureOptions narrow;
+  narrow.minPatchWidth = 2 * w;
+  Segmentation s = segment(g, narrow);
+  CHECK(s.mergedNarrowPatches == 1);
+  CHECK(s.patches.size() == 2);
+  CHECK(s.droppedFeatureEdges == 8);
+  CHECK(s.sharpEdgeCount == 8);  // one fold line stays and draws the chamfer
+  size_t featureCurves = 0;
+  for (const auto& c : s.curves) featureCurves += c.kind == EdgeKind::Feature;
+  CHECK(featureCurves >= 1);
+  checkPatchesAreDisks(g, s);
+  // the panels are not narrow, whatever the strip does
+  for (const auto& p : s.patches) CHECK(p.size() >= 16);
+  // user feature edges on both fold lines: nothing to drop, the strip stays
+  FeatureOptions user = narrow;
+  for (uint32_t e = 0; e < g.edgeCount(); ++e)
+    if (all.edgeKind[e] == EdgeKind::Feature) user.featureEdges.push_back({g.edgeVerts[e][0], g.edgeVerts[e][1]});
+  Segmentation u = segment(g, user);
+  CHECK(u.mergedNarrowPatches == 0);
+  CHECK(u.patches.size() == 3);
+  FeatureOptions bad;
+  bad.minPatchWidth = -1;
+  CHECK_THROWS(segment(g, bad));
+}
