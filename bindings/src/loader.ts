@@ -27,7 +27,8 @@ export function isNode(): boolean {
   return typeof p?.versions?.node === 'string' && p.release?.name === 'node';
 }
 
-function wasmLocation(): URL {
+/** The .wasm file next to the package's scripts. */
+export function wasmLocation(): URL {
   return new URL('./conformesh.wasm', import.meta.url);
 }
 

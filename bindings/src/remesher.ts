@@ -1,6 +1,6 @@
 // createRemesher: the API running in workers (module Web Workers in browsers, worker_threads in
 // Node), so long calls never block the page. Protocol: protocol.ts.
-import { isNode } from './loader.js';
+import { isNode, wasmLocation } from './loader.js';
 import type { CallRequest, WorkerMethod, WorkerRequest, WorkerResponse } from './protocol.js';
 import { transferablesOf } from './protocol.js';
 import { ConformeshError, invalidArgument, type StageName } from './status.js';
@@ -179,8 +179,35 @@ export function createRemesher(options: RemesherOptions = {}): Remesher {
     }
   };
 
+  // Browsers: compile the module once, off the main thread (compileStreaming), and give every
+  // worker the compiled module, replacements after a cancel included: a worker that compiled
+  // its own copy kept the cores busy for a second right when the next call started, and the
+  // page's frames stalled. Skipped when the caller passes its own module or bytes, and in Node
+  // (each worker reads the file); any failure falls back to the worker loading it itself.
+  let shared: Promise<RemesherOptions['init']> | undefined;
+  const initFor = (): Promise<RemesherOptions['init']> => {
+    const given = options.init ?? {};
+    if (given.wasmModule || given.wasmBinary || isNode() || typeof WebAssembly === 'undefined' || typeof fetch !== 'function')
+      return Promise.resolve(given);
+    shared ??= (async () => {
+      const url = given.wasmUrl ?? wasmLocation();
+      try {
+        const response = await fetch(url);
+        if (!response.ok) return given;
+        const wasmModule =
+          typeof WebAssembly.compileStreaming === 'function' && (response.headers.get('content-type') ?? '').startsWith('application/wasm')
+            ? await WebAssembly.compileStreaming(response)
+            : await WebAssembly.compile(await response.arrayBuffer());
+        return { ...given, wasmModule };
+      } catch {
+        return given;
+      }
+    })();
+    return shared;
+  };
+
   const startWorker = (slot: Slot): Promise<WorkerLike> => {
-    const w = Promise.resolve().then(create).then((worker) => {
+    const w = Promise.all([Promise.resolve().then(create), initFor()]).then(([worker, init]) => {
       if (worker.addEventListener) {
         worker.addEventListener('message', (ev) => onMessage(slot, ev.data));
         worker.addEventListener('error', (ev) => onFailure(slot, ev));
@@ -196,7 +223,7 @@ export function createRemesher(options: RemesherOptions = {}): Remesher {
       }
       // load and compile the module now, not inside the first call (keeps a replacement worker's
       // start-up out of the next call after a cancel, and off the main thread's frames then)
-      worker.postMessage({ id: 0, type: 'init', options: options.init ?? {} } satisfies WorkerRequest);
+      worker.postMessage({ id: 0, type: 'init', options: init ?? {} } satisfies WorkerRequest);
       return worker;
     });
     return w;

@@ -3,6 +3,7 @@
 // (remesh, flatten) are detected here, so the page can say "not available in this build" rather
 // than pretend.
 import { ConformeshError, createRemesher, type MeshInfo, type MeshLike, type ReadMeshResult, type Remesher } from 'conformesh';
+import { mountingPlate } from './plate.ts';
 
 export type BoundaryCondition = 'corners' | 'free' | 'disk';
 /** The library's name of the page's boundary condition (the page says 'disk' for the round one). */
@@ -122,6 +123,24 @@ export class Engine {
     const r = this.remesher as unknown as Loose;
     this.canRemesh = typeof r.remesh === 'function';
     this.canFlatten = typeof r.flatten === 'function';
+  }
+
+  /**
+   * Remesh a small generated part once, in the worker, right after start-up. V8 runs new
+   * WebAssembly code in its baseline tier and optimizes hot functions in background threads
+   * while they run; on a 2-core machine those threads and the worker left the page's main
+   * thread a 200-400 ms frame gap during the first remesh of a session. Done here, while the
+   * page waits for a file, the first real remesh runs optimized code. Errors are ignored (the
+   * real call reports its own).
+   */
+  async warmUp(): Promise<void> {
+    if (!this.canRemesh) return;
+    const fn = (this.remesher as unknown as Loose).remesh as (m: MeshLike, o: unknown) => Promise<unknown>;
+    try {
+      await fn.call(this.remesher, mountingPlate(), { targetEdgeLengthRel: 0.03, computeHausdorff: false });
+    } catch {
+      // the module failed to load or the part failed: the user's own call will say why
+    }
   }
 
   version(): Promise<string> {

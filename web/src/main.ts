@@ -79,7 +79,10 @@ try {
   throw e;
 }
 engine.version().then(
-  (v) => ($('#version').textContent = `v${v}`),
+  (v) => {
+    $('#version').textContent = `v${v}`;
+    void engine.warmUp();
+  },
   (e) => showError(errorBox, e, 'loading the conformesh module'),
 );
 
