@@ -290,7 +290,7 @@ export interface RemeshOptions {
   minFeatureLength?: number;
   /** A patch whose scale factor ratio exceeds this is split; default 50. */
   maxScaleRatio?: number;
-  /** Rounds of the 3D angle certificate; default 3. */
+  /** Cap on the rounds of the 3D angle certificate (they also stop after two rounds in a row without a gain); default 6. */
   maxCertificateRounds?: number;
   /** Optimize each patch after refinement (ODT moves and flips judged in 3D; default true). */
   optimize?: boolean;

@@ -57,8 +57,9 @@ struct RemeshOptions {
   //! planar sizing would otherwise span a huge range and the flow's layout lose precision).
   double maxScaleRatio = 50.0;
   //! Cap on the rounds of the 3D angle certificate (re-meshing patches with smaller planar size
-  //! where a lifted triangle is below the bound).
-  int maxCertificateRounds = 3;
+  //! where a lifted triangle is below the bound). The rounds also stop after two in a row that
+  //! do not beat the best one; the best round is the output.
+  int maxCertificateRounds = 6;
   //! Optimize every patch's mesh after refinement (issue 9): ODT vertex moves and flips in the
   //! conformal plane, accepted only when the lifted 3D triangles get better and the angle bound
   //! holds (remesh/optimize.h). Raises the mean per-triangle min angle; never lowers the worst.
