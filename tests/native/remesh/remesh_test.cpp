@@ -96,11 +96,17 @@ TEST_CASE("remesh: bad options and bad input come back as a status") {
 }
 
 // Models of ../shared/data that meet every property with the defaults, and (issue 9) a mean
-// per-triangle min angle of at least 50 degrees (blade.off reached it once its 0.033-wide
-// chamfer strip was merged, minPatchWidth: 50.8 on 2026-11-28).
-TEST_CASE("remesh: shared/data models with the defaults (fandisk, 3holes, alligator, blade, face)") {
-  const std::pair<const char*, bool> models[] = {{"fandisk.off", true}, {"3holes.off", true}, {"alligator.obj", true}, {"blade.off", true},
-                                                 {"face.obj", true}};
+// per-triangle min angle of at least 50 degrees where marked (blade.off reached it once its
+// 0.033-wide chamfer strip was merged, minPatchWidth: 50.8 on 2026-11-28; stanford-bunny is at
+// 49.5). spot, holes, stanford-bunny, mech-holes-shark and t13_data meet the bound at the default
+// target, but not at every target near it: with the target at 0.95, 0.98, 1.02, 1.05 % of the
+// diagonal, spot 0–1, holes 0–1, stanford-bunny 0–1, mech-holes-shark 0–8, t13_data 0–1
+// triangles fall below it outside exempt corners (2026-11-28, session 4).
+TEST_CASE("remesh: shared/data models with the defaults (fandisk, 3holes, alligator, blade, face, spot, holes, bunny, mech, t13)") {
+  const std::pair<const char*, bool> models[] = {{"fandisk.off", true},        {"3holes.off", true},     {"alligator.obj", true},
+                                                 {"blade.off", true},          {"face.obj", true},       {"spot.obj", true},
+                                                 {"holes.off", true},          {"stanford-bunny.obj", false},
+                                                 {"mech-holes-shark.off", true}, {"t13_data.stl", true}};
   for (const auto& model : models) {
     const char* name = model.first;
     const bool mean50 = model.second;
@@ -115,18 +121,13 @@ TEST_CASE("remesh: shared/data models with the defaults (fandisk, 3holes, alliga
 }
 
 // Not yet meeting the bound (issue 5). Exempt corners are only the input's own: where its
-// feature or boundary curves make a wedge below the bound (featureWedgeAngles). Two causes remain:
-// (1) where a cut (ours, not a feature) meets another curve, or three cuts meet, one patch can
-// have a wedge below the bound that improveCutJunctions did not open up; (2) near small angles
-// between curves the refinements of the two sides keep splitting each other's segments until the
-// conforming round cap, and the last refinement of such a patch may not split its boundary.
-// Measured 2026-11-28 with the target edge length at 0.95, 0.98, 1.02, 1.05 % of the diagonal:
-// spot 0–1, holes 0–1, fertility 2–5, stanford-bunny 0–2, mech-holes-shark 0–8, t13_data 0–5
-// triangles below the bound outside exempt corners. The counts move with last-bit differences,
-// so they are printed; every other property is asserted. camelhead.off (32–94 of ~200k, ~10 s) is
-// left to the benchmark.
+// feature or boundary curves make a wedge below the bound (featureWedgeAngles). fertility's 5
+// (2–3 at targets 2–5 % away) are where a cut (ours, not a feature) meets a dangling feature's
+// end or another cut at a small angle that improveCutJunctions did not open up: the patch's
+// corner there is below the bound in 3D and no size fixes it. The count is printed; every other
+// property is asserted. camelhead.off (64 of ~200k, ~11 s) is left to the benchmark.
 TEST_CASE("remesh: shared/data models whose bound is not yet met everywhere") {
-  for (const char* name : {"spot.obj", "holes.off", "fertility.off", "stanford-bunny.obj", "mech-holes-shark.off", "t13_data.stl"}) {
+  for (const char* name : {"fertility.off"}) {
     ReadResult rr = readMesh(test::readFile(std::string(CONFORMESH_DATA_DIR) + "/" + name));
     RemeshOptions o;
     o.hausdorffSamples = 5000;
