@@ -155,6 +155,52 @@ struct Cutter {
   }
 };
 
+struct WedgeScratch {
+  std::vector<uint32_t> star, parent;
+  std::vector<double> sum;
+};
+
+// The smallest wedge at v between edges for which separates(e) holds (the open boundary always
+// separates): the sum of the face angles at v between two consecutive such edges, found by
+// joining the faces of v's star across the other edges (union-find). 2π when no such edge
+// touches v; the full angle sum at v when one does.
+template <class Separates>
+double smallestWedge(const EdgeGraph& g, uint32_t v, const Separates& separates, WedgeScratch& w) {
+  bool touched = false;
+  w.star.clear();
+  for (uint32_t k = g.vertexEdgeStart[v]; k < g.vertexEdgeStart[v + 1]; ++k) {
+    const uint32_t e = g.vertexEdgeIds[k];
+    if (separates(e) || g.isBoundary(e)) touched = true;
+    for (uint32_t f : g.edgeFaces[e])
+      if (f != kNone) w.star.push_back(f);
+  }
+  if (!touched) return 2 * kPi;
+  std::sort(w.star.begin(), w.star.end());
+  w.star.erase(std::unique(w.star.begin(), w.star.end()), w.star.end());
+  w.parent.resize(w.star.size());
+  for (uint32_t i = 0; i < w.parent.size(); ++i) w.parent[i] = i;
+  auto find = [&](uint32_t i) {
+    while (w.parent[i] != i) i = w.parent[i] = w.parent[w.parent[i]];
+    return i;
+  };
+  auto slot = [&](uint32_t f) { return uint32_t(std::lower_bound(w.star.begin(), w.star.end(), f) - w.star.begin()); };
+  for (uint32_t k = g.vertexEdgeStart[v]; k < g.vertexEdgeStart[v + 1]; ++k) {
+    const uint32_t e = g.vertexEdgeIds[k];
+    if (separates(e) || g.isBoundary(e)) continue;
+    w.parent[find(slot(g.edgeFaces[e][0]))] = find(slot(g.edgeFaces[e][1]));
+  }
+  w.sum.assign(w.star.size(), 0.0);
+  for (uint32_t i = 0; i < w.star.size(); ++i) {
+    const auto& fv = g.faces[w.star[i]];
+    for (int c = 0; c < 3; ++c)
+      if (fv[c] == v) w.sum[find(i)] += g.cornerAngle(w.star[i], c);
+  }
+  double m = 2 * kPi;
+  for (uint32_t i = 0; i < w.star.size(); ++i)
+    if (find(i) == i) m = std::min(m, w.sum[i]);
+  return m;
+}
+
 // Patches: faces connected across edges that are not curve edges (seg.facePatch, seg.patches).
 void floodPatches(const EdgeGraph& g, Segmentation& seg) {
   seg.facePatch.assign(g.faceCount, kNone);
@@ -361,6 +407,23 @@ bool splitsIntoTwoDisks(const EdgeGraph& g, const Segmentation& seg, const std::
   return true;
 }
 
+namespace {
+// The safety net after moving cuts (curves rebuilt): every patch is still a disk, else the
+// edge kinds are put back as they were. Returns whether the moves are kept.
+bool keepCutsIfAllDisks(const EdgeGraph& g, Segmentation& seg, const std::vector<EdgeKind>& original) {
+  const std::vector<uint8_t> mask = seg.curveMask();
+  for (const auto& faces : seg.patches)
+    if (!extractPatch(g, mask, faces, false).isDisk()) {
+      seg.edgeKind = original;
+      rebuildCurves(g, seg);
+      return false;
+    }
+  seg.cutEdgeCount = 0;
+  for (EdgeKind kd : seg.edgeKind) seg.cutEdgeCount += kd == EdgeKind::Cut;
+  return true;
+}
+}  // namespace
+
 uint32_t improveCutJunctions(const EdgeGraph& g, Segmentation& seg, double scale) {
   if (!(scale > 0)) return 0;
   const double kAim = 60.0 * kPi / 180.0;   // ends meeting another curve below this are rerouted
@@ -540,64 +603,67 @@ uint32_t improveCutJunctions(const EdgeGraph& g, Segmentation& seg, double scale
     total += moved;
     rebuildCurves(g, seg);
   }
-  if (total == 0) return 0;
-  // the safety net: every patch is still a disk, else the cuts are put back as they were
-  mask = seg.curveMask();
-  for (const auto& faces : seg.patches)
-    if (!extractPatch(g, mask, faces, false).isDisk()) {
-      seg.edgeKind = original;
-      rebuildCurves(g, seg);
-      return 0;
-    }
-  seg.cutEdgeCount = 0;
-  for (EdgeKind kd : seg.edgeKind) seg.cutEdgeCount += kd == EdgeKind::Cut;
+  if (total == 0 || !keepCutsIfAllDisks(g, seg, original)) return 0;
   seg.reroutedCutEnds += total;
   return total;
 }
 
-std::vector<double> featureWedgeAngles(const EdgeGraph& g, const Segmentation& seg) {
-  // faces around each vertex joined across the edges at the vertex that are not features or
-  // boundaries (union-find on the few faces of the star)
-  std::vector<double> out(g.vertexCount, 2 * kPi);
-  std::vector<uint32_t> star, parent;
-  std::vector<double> sum;
-  for (uint32_t v = 0; v < g.vertexCount; ++v) {
-    bool touched = false;
-    star.clear();
-    for (uint32_t k = g.vertexEdgeStart[v]; k < g.vertexEdgeStart[v + 1]; ++k) {
-      const uint32_t e = g.vertexEdgeIds[k];
-      const EdgeKind kind = seg.edgeKind[e];
-      if (kind == EdgeKind::Feature || kind == EdgeKind::Boundary) touched = true;
-      for (uint32_t f : g.edgeFaces[e])
-        if (f != kNone) star.push_back(f);
-    }
-    if (!touched) continue;
-    std::sort(star.begin(), star.end());
-    star.erase(std::unique(star.begin(), star.end()), star.end());
-    parent.resize(star.size());
-    for (uint32_t i = 0; i < parent.size(); ++i) parent[i] = i;
-    auto find = [&](uint32_t i) {
-      while (parent[i] != i) i = parent[i] = parent[parent[i]];
-      return i;
-    };
-    auto slot = [&](uint32_t f) { return uint32_t(std::lower_bound(star.begin(), star.end(), f) - star.begin()); };
-    for (uint32_t k = g.vertexEdgeStart[v]; k < g.vertexEdgeStart[v + 1]; ++k) {
-      const uint32_t e = g.vertexEdgeIds[k];
-      const EdgeKind kind = seg.edgeKind[e];
-      if (kind == EdgeKind::Feature || kind == EdgeKind::Boundary || g.edgeFaces[e][1] == kNone) continue;
-      parent[find(slot(g.edgeFaces[e][0]))] = find(slot(g.edgeFaces[e][1]));
-    }
-    sum.assign(star.size(), 0.0);
-    for (uint32_t i = 0; i < star.size(); ++i) {
-      const auto& fv = g.faces[star[i]];
-      for (int c = 0; c < 3; ++c)
-        if (fv[c] == v) sum[find(i)] += g.cornerAngle(star[i], c);
-    }
+uint32_t straightenCutEars(const EdgeGraph& g, Segmentation& seg) {
+  const double kEar = 45.0 * kPi / 180.0;  // one-face wedges below this are candidates
+  const double kGain = 1.0 * kPi / 180.0;  // a move must raise the smallest wedge by this much
+  constexpr int kPasses = 8;
+  const std::vector<EdgeKind> original = seg.edgeKind;
+  WedgeScratch scratch;
+  auto isCurve = [&](uint32_t e) { return seg.isCurveEdge(e); };
+  auto wedgeAround = [&](std::initializer_list<uint32_t> vs) {
     double m = 2 * kPi;
-    for (uint32_t i = 0; i < star.size(); ++i)
-      if (find(i) == i) m = std::min(m, sum[i]);
-    out[v] = m;
+    for (uint32_t x : vs) m = std::min(m, smallestWedge(g, x, isCurve, scratch));
+    return m;
+  };
+  auto valence = [&](uint32_t x) {
+    uint32_t n = 0;
+    for (uint32_t k = g.vertexEdgeStart[x]; k < g.vertexEdgeStart[x + 1]; ++k) n += seg.isCurveEdge(g.vertexEdgeIds[k]);
+    return n;
+  };
+  uint32_t total = 0;
+  for (int pass = 0; pass < kPasses; ++pass) {
+    uint32_t moved = 0;
+    for (uint32_t f = 0; f < g.faceCount; ++f)
+      for (int c = 0; c < 3; ++c) {
+        const uint32_t v = g.faces[f][c], a = g.faces[f][(c + 1) % 3], b = g.faces[f][(c + 2) % 3];
+        const uint32_t ea = g.findEdge(v, a), eb = g.findEdge(v, b), eab = g.findEdge(a, b);
+        if (ea == kNone || eb == kNone || eab == kNone) continue;
+        if (!seg.isCurveEdge(ea) || !seg.isCurveEdge(eb) || seg.isCurveEdge(eab)) continue;
+        const bool cutA = seg.edgeKind[ea] == EdgeKind::Cut, cutB = seg.edgeKind[eb] == EdgeKind::Cut;
+        if (!(cutA || cutB) || !(g.cornerAngle(f, c) < kEar)) continue;
+        // the cut edges at v go, a-b becomes a cut; v must keep 0 or at least 2 curve edges
+        const uint32_t left = valence(v) - uint32_t(cutA) - uint32_t(cutB);
+        if (left == 1) continue;
+        const double before = wedgeAround({v, a, b});
+        if (cutA) seg.edgeKind[ea] = EdgeKind::None;
+        if (cutB) seg.edgeKind[eb] = EdgeKind::None;
+        seg.edgeKind[eab] = EdgeKind::Cut;
+        if (wedgeAround({v, a, b}) > before + kGain) {
+          ++moved;
+        } else {
+          if (cutA) seg.edgeKind[ea] = EdgeKind::Cut;
+          if (cutB) seg.edgeKind[eb] = EdgeKind::Cut;
+          seg.edgeKind[eab] = EdgeKind::None;
+        }
+      }
+    if (moved == 0) break;
+    total += moved;
   }
+  if (total == 0) return 0;
+  rebuildCurves(g, seg);
+  return keepCutsIfAllDisks(g, seg, original) ? total : 0;
+}
+
+std::vector<double> featureWedgeAngles(const EdgeGraph& g, const Segmentation& seg) {
+  std::vector<double> out(g.vertexCount, 2 * kPi);
+  WedgeScratch scratch;
+  auto separates = [&](uint32_t e) { return seg.edgeKind[e] == EdgeKind::Feature || seg.edgeKind[e] == EdgeKind::Boundary; };
+  for (uint32_t v = 0; v < g.vertexCount; ++v) out[v] = smallestWedge(g, v, separates, scratch);
   return out;
 }
 
@@ -766,6 +832,7 @@ Segmentation segment(const EdgeGraph& g, const FeatureOptions& options, const Pr
   }
   rebuildCurves(g, seg);
   improveCutJunctions(g, seg, seg.junctionScale);
+  straightenCutEars(g, seg);
   if (progress && !progress(Stage::Segment, 1.0)) fail(Code::Cancelled, Stage::Segment, "cancelled");
   return seg;
 }
@@ -783,6 +850,7 @@ bool splitPatch(const EdgeGraph& g, Segmentation& seg, uint32_t p, uint32_t part
   }
   rebuildCurves(g, seg);
   improveCutJunctions(g, seg, seg.junctionScale);
+  straightenCutEars(g, seg);
   return true;
 }
 

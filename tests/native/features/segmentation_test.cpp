@@ -314,3 +314,45 @@ TEST_CASE("features: minPatchWidth merges a strip narrower than it into a neighb
   bad.minPatchWidth = -1;
   CHECK_THROWS(segment(g, bad));
 }
+
+TEST_CASE("features: straightenCutEars moves a cut across a one-face wedge below 45 degrees, patches stay disks") {
+  // a 4 x 4 grid of [0, 2] x [0, 1] (faces with angles of 26.6, 63.4 and 90 degrees); a cut from
+  // the left side to the bottom with a kink at (1.5, 0.5): left along y = 0.5, then back down a
+  // diagonal, a wedge of one face of 26.6 degrees at the kink
+  MeshBuffers m = testshapes::square(4);
+  for (size_t v = 0; v < m.vertexCount(); ++v) m.positions[3 * v] *= 2;
+  EdgeGraph g = buildEdgeGraph(m);
+  auto at = [&](double x, double y) {
+    for (uint32_t v = 0; v < g.vertexCount; ++v)
+      if (std::abs(g.positions[v].x - x) < 1e-12 && std::abs(g.positions[v].y - y) < 1e-12) return v;
+    return kNone;
+  };
+  Segmentation s = segment(g, FeatureOptions{});
+  REQUIRE(s.patches.size() == 1);
+  const std::vector<std::array<double, 2>> path = {{0, 0.5}, {0.5, 0.5}, {1, 0.5}, {1.5, 0.5}, {1, 0.25}, {1, 0}};
+  for (size_t i = 0; i + 1 < path.size(); ++i) {
+    const uint32_t e = g.findEdge(at(path[i][0], path[i][1]), at(path[i + 1][0], path[i + 1][1]));
+    REQUIRE(e != kNone);
+    s.edgeKind[e] = EdgeKind::Cut;
+  }
+  rebuildCurves(g, s);
+  REQUIRE(s.patches.size() == 2);
+  Segmentation kinked = s;
+  CHECK(straightenCutEars(g, s) == 1);
+  CHECK(s.edgeKind[g.findEdge(at(1, 0.5), at(1.5, 0.5))] == EdgeKind::None);
+  CHECK(s.edgeKind[g.findEdge(at(1.5, 0.5), at(1, 0.25))] == EdgeKind::None);
+  CHECK(s.edgeKind[g.findEdge(at(1, 0.5), at(1, 0.25))] == EdgeKind::Cut);
+  CHECK(s.patches.size() == 2);
+  checkPatchesAreDisks(g, s);
+  // nothing left to move: a second call changes nothing
+  CHECK(straightenCutEars(g, s) == 0);
+  // a right-angle turn is no ear
+  Segmentation square = kinked;
+  for (uint32_t e = 0; e < g.edgeCount(); ++e)
+    if (square.edgeKind[e] == EdgeKind::Cut) square.edgeKind[e] = EdgeKind::None;
+  for (const auto& [p, q] : std::vector<std::pair<std::array<double, 2>, std::array<double, 2>>>{
+           {{0, 0.5}, {0.5, 0.5}}, {{0.5, 0.5}, {1, 0.5}}, {{1, 0.5}, {1, 0.25}}, {{1, 0.25}, {1, 0}}})
+    square.edgeKind[g.findEdge(at(p[0], p[1]), at(q[0], q[1]))] = EdgeKind::Cut;
+  rebuildCurves(g, square);
+  CHECK(straightenCutEars(g, square) == 0);
+}

@@ -98,15 +98,16 @@ TEST_CASE("remesh: bad options and bad input come back as a status") {
 // Models of ../shared/data that meet every property with the defaults, and (issue 9) a mean
 // per-triangle min angle of at least 50 degrees where marked (blade.off reached it once its
 // 0.033-wide chamfer strip was merged, minPatchWidth: 50.8 on 2026-11-28; stanford-bunny is at
-// 49.5). spot, holes, stanford-bunny, mech-holes-shark and t13_data meet the bound at the default
-// target, but not at every target near it: with the target at 0.95, 0.98, 1.02, 1.05 % of the
-// diagonal, spot 0–1, holes 0–1, stanford-bunny 0–1, mech-holes-shark 0–8, t13_data 0–1
-// triangles fall below it outside exempt corners (2026-11-28, session 4).
-TEST_CASE("remesh: shared/data models with the defaults (fandisk, 3holes, alligator, blade, face, spot, holes, bunny, mech, t13)") {
+// 49.6). Some meet the bound at the default target but not at every target near it: with the
+// target at 0.95, 0.98, 1.02, 1.05 % of the diagonal, holes, fertility, stanford-bunny and
+// mech-holes-shark have 0–1 triangles below it outside exempt corners (2026-11-28, session 4).
+// camelhead.off (63 of ~196k, ~12 s) is left to the benchmark.
+TEST_CASE("remesh: shared/data models with the defaults (all but camelhead)") {
   const std::pair<const char*, bool> models[] = {{"fandisk.off", true},        {"3holes.off", true},     {"alligator.obj", true},
                                                  {"blade.off", true},          {"face.obj", true},       {"spot.obj", true},
                                                  {"holes.off", true},          {"stanford-bunny.obj", false},
-                                                 {"mech-holes-shark.off", true}, {"t13_data.stl", true}};
+                                                 {"mech-holes-shark.off", true}, {"t13_data.stl", true},
+                                                 {"fertility.off", true}};
   for (const auto& model : models) {
     const char* name = model.first;
     const bool mean50 = model.second;
@@ -117,21 +118,6 @@ TEST_CASE("remesh: shared/data models with the defaults (fandisk, 3holes, alliga
     INFO(name);
     CHECK(r.report.optimizeMoves > 0);
     if (mean50) CHECK(r.report.meanMinAngle >= 50.0);
-  }
-}
-
-// Not yet meeting the bound (issue 5). Exempt corners are only the input's own: where its
-// feature or boundary curves make a wedge below the bound (featureWedgeAngles). fertility's 5
-// (2–3 at targets 2–5 % away) are where a cut (ours, not a feature) meets a dangling feature's
-// end or another cut at a small angle that improveCutJunctions did not open up: the patch's
-// corner there is below the bound in 3D and no size fixes it. The count is printed; every other
-// property is asserted. camelhead.off (64 of ~200k, ~11 s) is left to the benchmark.
-TEST_CASE("remesh: shared/data models whose bound is not yet met everywhere") {
-  for (const char* name : {"fertility.off"}) {
-    ReadResult rr = readMesh(test::readFile(std::string(CONFORMESH_DATA_DIR) + "/" + name));
-    RemeshOptions o;
-    o.hausdorffSamples = 5000;
-    checkRemesh(rr.mesh, o, name, false, false);
   }
 }
 
