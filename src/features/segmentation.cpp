@@ -609,15 +609,16 @@ uint32_t improveCutJunctions(const EdgeGraph& g, Segmentation& seg, double scale
 }
 
 uint32_t straightenCutEars(const EdgeGraph& g, Segmentation& seg) {
-  const double kEar = 45.0 * kPi / 180.0;  // one-face wedges below this are candidates
+  const double kEar = 45.0 * kPi / 180.0;  // wedges below this are candidates
   const double kGain = 1.0 * kPi / 180.0;  // a move must raise the smallest wedge by this much
   constexpr int kPasses = 8;
+  constexpr size_t kMaxFan = 64;  // faces in one wedge (needle fans)
   const std::vector<EdgeKind> original = seg.edgeKind;
   WedgeScratch scratch;
   auto isCurve = [&](uint32_t e) { return seg.isCurveEdge(e); };
-  auto wedgeAround = [&](std::initializer_list<uint32_t> vs) {
-    double m = 2 * kPi;
-    for (uint32_t x : vs) m = std::min(m, smallestWedge(g, x, isCurve, scratch));
+  auto wedgeAround = [&](uint32_t v, const std::vector<uint32_t>& rim) {
+    double m = smallestWedge(g, v, isCurve, scratch);
+    for (uint32_t x : rim) m = std::min(m, smallestWedge(g, x, isCurve, scratch));
     return m;
   };
   auto valence = [&](uint32_t x) {
@@ -625,32 +626,59 @@ uint32_t straightenCutEars(const EdgeGraph& g, Segmentation& seg) {
     for (uint32_t k = g.vertexEdgeStart[x]; k < g.vertexEdgeStart[x + 1]; ++k) n += seg.isCurveEdge(g.vertexEdgeIds[k]);
     return n;
   };
+  std::vector<uint32_t> rim, rimEdges;
   uint32_t total = 0;
   for (int pass = 0; pass < kPasses; ++pass) {
     uint32_t moved = 0;
-    for (uint32_t f = 0; f < g.faceCount; ++f)
-      for (int c = 0; c < 3; ++c) {
-        const uint32_t v = g.faces[f][c], a = g.faces[f][(c + 1) % 3], b = g.faces[f][(c + 2) % 3];
-        const uint32_t ea = g.findEdge(v, a), eb = g.findEdge(v, b), eab = g.findEdge(a, b);
-        if (ea == kNone || eb == kNone || eab == kNone) continue;
-        if (!seg.isCurveEdge(ea) || !seg.isCurveEdge(eb) || seg.isCurveEdge(eab)) continue;
-        const bool cutA = seg.edgeKind[ea] == EdgeKind::Cut, cutB = seg.edgeKind[eb] == EdgeKind::Cut;
-        if (!(cutA || cutB) || !(g.cornerAngle(f, c) < kEar)) continue;
-        // the cut edges at v go, a-b becomes a cut; v must keep 0 or at least 2 curve edges
-        const uint32_t left = valence(v) - uint32_t(cutA) - uint32_t(cutB);
-        if (left == 1) continue;
-        const double before = wedgeAround({v, a, b});
-        if (cutA) seg.edgeKind[ea] = EdgeKind::None;
-        if (cutB) seg.edgeKind[eb] = EdgeKind::None;
-        seg.edgeKind[eab] = EdgeKind::Cut;
-        if (wedgeAround({v, a, b}) > before + kGain) {
-          ++moved;
-        } else {
-          if (cutA) seg.edgeKind[ea] = EdgeKind::Cut;
-          if (cutB) seg.edgeKind[eb] = EdgeKind::Cut;
-          seg.edgeKind[eab] = EdgeKind::None;
+    for (uint32_t f0 = 0; f0 < g.faceCount; ++f0)
+      for (int c0 = 0; c0 < 3; ++c0)
+        for (int side = 0; side < 2; ++side) {
+          // the wedge at v from the cut edge v-a, turning away from it face by face until the
+          // next curve edge v-c; rim: a, ..., c (the far vertices of the wedge's faces)
+          const uint32_t v = g.faces[f0][c0], a = g.faces[f0][(c0 + 1 + side) % 3];
+          const uint32_t ea = g.findEdge(v, a);
+          if (ea == kNone || seg.edgeKind[ea] != EdgeKind::Cut) continue;
+          uint32_t f = f0, b = g.faces[f0][(c0 + 2 - side) % 3];
+          double angle = g.cornerAngle(f0, c0);
+          rim.assign({a, b});
+          uint32_t eb = g.findEdge(v, b);
+          while (eb != kNone && !seg.isCurveEdge(eb) && angle < kEar && rim.size() <= kMaxFan) {
+            const uint32_t nf = g.edgeFaces[eb][0] == f ? g.edgeFaces[eb][1] : g.edgeFaces[eb][0];
+            if (nf == kNone) break;
+            int cv = 0;
+            while (cv < 3 && g.faces[nf][cv] != v) ++cv;
+            if (cv == 3) break;
+            const uint32_t x = g.faces[nf][(cv + 1) % 3] == b ? g.faces[nf][(cv + 2) % 3] : g.faces[nf][(cv + 1) % 3];
+            angle += g.cornerAngle(nf, cv);
+            rim.push_back(x);
+            f = nf;
+            b = x;
+            eb = g.findEdge(v, x);
+          }
+          if (eb == kNone || !seg.isCurveEdge(eb) || !(angle < kEar)) continue;
+          // the new cut runs along the rim: its edges free, its inner vertices on no curve
+          rimEdges.clear();
+          bool ok = true;
+          for (size_t i = 0; i + 1 < rim.size() && ok; ++i) {
+            const uint32_t e = g.findEdge(rim[i], rim[i + 1]);
+            ok = e != kNone && !seg.isCurveEdge(e) && (i == 0 || valence(rim[i]) == 0);
+            rimEdges.push_back(e);
+          }
+          const bool cutB = seg.edgeKind[eb] == EdgeKind::Cut;
+          // v keeps no curve edge or at least two (a dangling end would be a slit)
+          if (!ok || valence(v) - 1 - uint32_t(cutB) == 1) continue;
+          const double before = wedgeAround(v, rim);
+          seg.edgeKind[ea] = EdgeKind::None;
+          if (cutB) seg.edgeKind[eb] = EdgeKind::None;
+          for (uint32_t e : rimEdges) seg.edgeKind[e] = EdgeKind::Cut;
+          if (wedgeAround(v, rim) > before + kGain) {
+            ++moved;
+          } else {
+            seg.edgeKind[ea] = EdgeKind::Cut;
+            if (cutB) seg.edgeKind[eb] = EdgeKind::Cut;
+            for (uint32_t e : rimEdges) seg.edgeKind[e] = EdgeKind::None;
+          }
         }
-      }
     if (moved == 0) break;
     total += moved;
   }

@@ -99,13 +99,13 @@ std::vector<double> featureWedgeAngles(const EdgeGraph& g, const Segmentation& s
 //! every patch stays a disk. Rebuilds the curves. Returns the number of ends rerouted.
 uint32_t improveCutJunctions(const EdgeGraph& g, Segmentation& seg, double scale);
 
-//! Where a cut makes a wedge of one input face below 45° at a vertex (a kink in the cut, or a
-//! cut leaving another curve at a small angle), move the cut across that face: its edges at the
-//! vertex stop being cuts and the face's third edge becomes one. Kept when the smallest wedge at
-//! the three vertices grows; every patch must stay a disk (else all moves are undone). Cuts follow
-//! input edges, so at the scale of one input edge they can zigzag: the patch there has a corner
-//! no mesh can give better angles, and the 3D certificate cannot refine it away. Returns the
-//! number of moves.
+//! Where a cut makes a wedge below 45° at a vertex (a kink in the cut, or a cut leaving another
+//! curve at a small angle), move the cut across the wedge's faces: its edges at the vertex stop
+//! being cuts and the far edges of the wedge's faces (the rim) become the cut. Kept when the
+//! smallest wedge at the vertex and along the rim grows; every patch must stay a disk (else all
+//! moves are undone). Cuts follow input edges, so at the scale of one input edge they can
+//! zigzag: the patch there has a corner no mesh can give better angles, and the 3D certificate
+//! cannot refine it away. Returns the number of moves.
 uint32_t straightenCutEars(const EdgeGraph& g, Segmentation& seg);
 
 //! Recompute curves, corners and patches from seg.edgeKind (after edges were marked).
