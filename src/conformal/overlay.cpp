@@ -447,55 +447,83 @@ bool Pullback::faceCoords(int t, double x, double y, double B[3], double& score)
   return true;
 }
 
-bool Pullback::locate(double x, double y, PullbackPoint& out, double tolerance) const {
-  if (fTri_.empty()) return false;
+int Pullback::gridSearch(double x, double y, double B[3], double tolerance) const {
+  if (fTri_.empty()) return -1;
   const int X = int(std::floor((x - lo_[0]) / cell_)), Y = int(std::floor((y - lo_[1]) / cell_));
   int bestFace = -1;
-  double bestMin = -1e300, bestB[3] = {0, 0, 0};
+  double bestMin = -1e300;
   for (int ring = 0; ring <= 1 && bestMin < 0; ++ring)
     for (int gx = std::max(0, X - ring); gx <= std::min(nx_ - 1, X + ring); ++gx)
       for (int gy = std::max(0, Y - ring); gy <= std::min(ny_ - 1, Y + ring); ++gy) {
         const size_t c = size_t(gy) * nx_ + gx;
         for (int k = gridStart_[c]; k < gridStart_[c + 1]; ++k) {
           const int t = gridFaces_[k];
-          double B[3], m;
-          if (!faceCoords(t, x, y, B, m)) continue;
+          double Bt[3], m;
+          if (!faceCoords(t, x, y, Bt, m)) continue;
           if (m > bestMin) {
             bestMin = m;
             bestFace = t;
-            for (int q = 0; q < 3; ++q) bestB[q] = B[q];
+            for (int q = 0; q < 3; ++q) B[q] = Bt[q];
           }
         }
       }
-  if (bestFace < 0 || bestMin < -tolerance) return false;
-  return finish(bestFace, bestB, out);
+  return bestFace < 0 || bestMin < -tolerance ? -1 : bestFace;
 }
 
-bool Pullback::locate(double x, double y, int hintFace, PullbackPoint& out, double tolerance) const {
+int Pullback::walk(double x, double y, int hintFace, double B[3], int& steps) const {
   // A point this far inside a face (in the grid search's score) is in no other face of an
   // embedded layout, by far more than the round-off of the score (~1e-16): the grid search
   // would pick the same face with the same coordinates.
   constexpr double kSurelyInside = 1e-12;
   constexpr int kMaxSteps = 1000;
   const int nF = int(fTri_.size() / 3);
-  if (hintFace >= 0 && hintFace < nF) {
-    int t = hintFace;
-    for (int step = 0; step < kMaxSteps; ++step) {
-      double B[3], m;
-      if (!faceCoords(t, x, y, B, m)) break;
-      if (m >= kSurelyInside) {
-        if (!finish(t, B, out)) return false;
-        out.walkSteps = step;
-        return true;
-      }
-      // cross the edge opposite the most negative coordinate (the point is beyond its line)
-      const int k = B[0] <= B[1] && B[0] <= B[2] ? 0 : (B[1] <= B[2] ? 1 : 2);
-      if (!(B[k] < 0)) break;  // inside, but too near an edge to be sure
-      t = fNbr_[3 * size_t(t) + k];
-      if (t < 0) break;  // off the domain across this edge, or a hole: the grid search decides
+  if (hintFace < 0 || hintFace >= nF) return -1;
+  int t = hintFace;
+  for (int step = 0; step < kMaxSteps; ++step) {
+    double m;
+    if (!faceCoords(t, x, y, B, m)) return -1;
+    if (m >= kSurelyInside) {
+      steps = step;
+      return t;
     }
+    // cross the edge opposite the most negative coordinate (the point is beyond its line)
+    const int k = B[0] <= B[1] && B[0] <= B[2] ? 0 : (B[1] <= B[2] ? 1 : 2);
+    if (!(B[k] < 0)) return -1;  // inside, but too near an edge to be sure
+    t = fNbr_[3 * size_t(t) + k];
+    if (t < 0) return -1;  // off the domain across this edge, or a hole: the grid search decides
   }
-  return locate(x, y, out, tolerance);
+  return -1;
+}
+
+bool Pullback::locate(double x, double y, PullbackPoint& out, double tolerance) const {
+  double B[3];
+  const int t = gridSearch(x, y, B, tolerance);
+  return t >= 0 && finish(t, B, out);
+}
+
+bool Pullback::locate(double x, double y, int hintFace, PullbackPoint& out, double tolerance) const {
+  double B[3];
+  int steps = -1;
+  const int t = walk(x, y, hintFace, B, steps);
+  if (t < 0) return locate(x, y, out, tolerance);
+  if (!finish(t, B, out)) return false;
+  out.walkSteps = steps;
+  return true;
+}
+
+bool Pullback::locateLayout(double x, double y, int& face, int vertices[3], double bary[3], double tolerance) const {
+  int steps = -1;
+  int t = walk(x, y, face, bary, steps);
+  if (t < 0) t = gridSearch(x, y, bary, tolerance);
+  if (t < 0) return false;
+  double s = 0;
+  for (int k = 0; k < 3; ++k) s += bary[k] = std::max(bary[k], 0.0);
+  for (int k = 0; k < 3; ++k) {
+    bary[k] /= s;
+    vertices[k] = fTri_[3 * size_t(t) + k];
+  }
+  face = t;
+  return true;
 }
 
 bool Pullback::finish(int t, const double B[3], PullbackPoint& out) const {

@@ -77,6 +77,12 @@ class Pullback {
   //! boundaryCrossings == 0) the result is bit-identical to locate(x, y, out, tolerance).
   bool locate(double x, double y, int hintFace, PullbackPoint& out, double tolerance = 1e-9) const;
 
+  //! The face of the final triangulation containing (x, y) and the point's barycentric
+  //! coordinates in it (clamped to >= 0, sum 1), not mapped to the input: for fields given per
+  //! vertex, which the final triangulation shares with the input. face: in, a hint as above (-1:
+  //! none); out, the face found. vertices: its three vertices. False off the domain.
+  bool locateLayout(double x, double y, int& face, int vertices[3], double bary[3], double tolerance = 1e-9) const;
+
   size_t crossings() const { return finalToDelaunay_.crossings + delaunayToInput_.crossings; }
   bool empty() const { return fTri_.empty(); }
 
@@ -96,6 +102,11 @@ class Pullback {
   bool faceCoords(int t, double x, double y, double B[3], double& score) const;
   // From final face t and the (unclamped) barycentrics of the point there to the input surface.
   bool finish(int t, const double B[3], PullbackPoint& out) const;
+  // The face whose coordinates of (x, y) have the largest score, in the point's grid cell and
+  // the ring around it; -1 when the best score is below -tolerance (off the domain).
+  int gridSearch(double x, double y, double B[3], double tolerance) const;
+  // Visibility walk from hintFace; the face when the point is surely inside it, else -1.
+  int walk(double x, double y, int hintFace, double B[3], int& steps) const;
 
   std::vector<int> fNbr_;          // 3 nFinal: the face across the edge opposite corner k, -1 none
   std::vector<double> fScale_;     // 3 nFinal: exp(u - max u over the face) per corner

@@ -611,15 +611,19 @@ void Pipeline::meshPatch(uint32_t p, bool splitSegments) {
   // Longest-edge bound of the refinement vs the mean edge length it gives: calibrated so the
   // mean output edge length in flat regions is the target.
   const double kSizeFactor = 1.3;
+  // The size at a planar point: h and the planar/3D scale interpolated in the face of the
+  // flattened triangulation that contains it (it has the sub-mesh's vertices), found by a walk
+  // from the face of the previous query (the refinement asks about nearby points in a row).
   const Pullback& pb = w.flat.pullback;
+  int sizingFace = -1;
   ro.sizing = [&](double x, double y) {
-    PullbackPoint q;
-    if (!pb.locate(x, y, q, 1e-6)) return double(INFINITY);
+    int fv[3];
+    double b[3];
+    if (!pb.locateLayout(x, y, sizingFace, fv, b, 1e-6)) return double(INFINITY);
     double h = 0, s = 0;
     for (int c = 0; c < 3; ++c) {
-      uint32_t v = w.pm.mesh.triangles[3 * q.face + c];
-      h += q.bary[c] * w.hSub[v];
-      s += q.bary[c] * w.scaleSub[v];
+      h += b[c] * w.hSub[uint32_t(fv[c])];
+      s += b[c] * w.scaleSub[uint32_t(fv[c])];
     }
     double hp = kSizeFactor * h * s;
     for (const Spot& sp : w.spots) hp = std::min(hp, sp.h + 0.5 * dmath::hypot(x - sp.x, y - sp.y));
