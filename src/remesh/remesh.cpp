@@ -659,27 +659,14 @@ void Pipeline::meshPatch(uint32_t p, bool splitSegments) {
   w.localToGlobal.assign(nv, kNone);
   w.interiorPositions.assign(nv, F::Vec3{});
   w.layoutFaces.assign(nv, -1);
-  std::vector<uint8_t> onBoundary(nv, 0);
-  {
-    std::unordered_map<uint64_t, int> cnt;
-    const auto& T = pmsh.triangles;
-    for (size_t t = 0; t < T.size(); t += 3)
-      for (int c = 0; c < 3; ++c) {
-        uint64_t a = T[t + c], b = T[t + (c + 1) % 3];
-        ++cnt[std::min(a, b) << 32 | std::max(a, b)];
-      }
-    for (const auto& [k, n] : cnt)
-      if (n == 1) onBoundary[k >> 32] = onBoundary[k & 0xffffffffu] = 1;
-  }
   for (size_t v = 0; v < nv; ++v) {
     if (v < bp.size()) {
       w.localToGlobal[v] = bp[v].sample;
       continue;
     }
-    if (onBoundary[v]) {
-      // a Steiner vertex on a boundary segment (segment i joins boundary points i and i + 1)
-      const int32_t sg = pmsh.vertexSegment[v];
-      if (sg < 0) fail(Code::InternalError, Stage::Refine, "a boundary vertex of the refinement lies on no segment");
+    // every segment is a boundary chord (the required points are free), so a Steiner vertex on
+    // a segment is a boundary split (segment i joins boundary points i and i + 1)
+    if (const int32_t sg = pmsh.vertexSegment[v]; sg >= 0) {
       const uint32_t bs = uint32_t(sg);
       const double bt = pmsh.vertexParam[v];
       w.localToGlobal[v] = addSplitSample(w, bp, bs, bt);
