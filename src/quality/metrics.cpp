@@ -193,8 +193,11 @@ std::vector<Vec3> samplePoints(const MeshBuffers& m, size_t count, uint64_t seed
 void oneSided(const std::vector<Vec3>& pts, const TriangleMeshDistance& target, double& maxD, double& meanD) {
   maxD = 0;
   double sum = 0;
+  int64_t hint = -1;  // consecutive samples are near each other (same or neighbouring triangles)
   for (const Vec3& p : pts) {
-    double d = std::sqrt(target.closest(p).distanceSquared);
+    const ClosestHit hit = target.closest(p, hint);
+    hint = hit.primitive;
+    double d = std::sqrt(hit.distanceSquared);
     if (!std::isfinite(d)) d = 0;  // target empty: nothing to measure against
     maxD = std::max(maxD, d);
     sum += d;
@@ -338,13 +341,22 @@ TriangleMeshDistance::TriangleMeshDistance(const MeshBuffers& mesh) : mesh_(mesh
   tree_.build(boxes);
 }
 
-ClosestHit TriangleMeshDistance::closest(const Vec3& p) const {
-  return tree_.closest(p, [this](uint32_t f, const Vec3& q) {
-    if (!triangleValid(mesh_, f)) return std::numeric_limits<double>::infinity();
-    const uint32_t* t = &mesh_.triangles[3 * size_t(f)];
-    Vec3 c = closestPointOnTriangle(q, vertex(mesh_, t[0]), vertex(mesh_, t[1]), vertex(mesh_, t[2]));
-    return distanceSquared(q, c);
-  });
+double TriangleMeshDistance::faceDistanceSquared(uint32_t f, const Vec3& q) const {
+  if (!triangleValid(mesh_, f)) return std::numeric_limits<double>::infinity();
+  const uint32_t* t = &mesh_.triangles[3 * size_t(f)];
+  Vec3 c = closestPointOnTriangle(q, vertex(mesh_, t[0]), vertex(mesh_, t[1]), vertex(mesh_, t[2]));
+  return distanceSquared(q, c);
+}
+
+ClosestHit TriangleMeshDistance::closest(const Vec3& p, int64_t hint) const {
+  auto distSq = [this](uint32_t f, const Vec3& q) { return faceDistanceSquared(f, q); };
+  if (hint < 0 || size_t(hint) >= mesh_.triangleCount()) return tree_.closest(p, distSq);
+  // the hint's distance bounds the search; a triangle strictly closer replaces it, so the
+  // distance is the same as without the hint
+  const double dh = distSq(uint32_t(hint), p);
+  ClosestHit h = tree_.closest(p, distSq, dh);
+  if (h.primitive < 0 && std::isfinite(dh)) h = {hint, dh};
+  return h;
 }
 
 HausdorffResult hausdorffDistance(const MeshBuffers& a, const MeshBuffers& b, const HausdorffOptions& options) {

@@ -1140,8 +1140,10 @@ RemeshResult Pipeline::run(const MeshBuffers& input) {
   {
     quality::TriangleMeshDistance dist(in);
     double worst = 0;
+    int64_t hint = -1;  // consecutive output vertices are near each other (curves, then patches)
     for (size_t v = 0; v < out.vertexCount(); ++v) {
-      auto hit = dist.closest({out.positions[3 * v], out.positions[3 * v + 1], out.positions[3 * v + 2]});
+      auto hit = dist.closest({out.positions[3 * v], out.positions[3 * v + 1], out.positions[3 * v + 2]}, hint);
+      hint = hit.primitive;
       worst = std::max(worst, hit.distanceSquared);
     }
     rep_.maxDistanceToInputRel = std::sqrt(worst) / sizing_.diagonal;
