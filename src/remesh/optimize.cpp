@@ -6,6 +6,7 @@
 #include <unordered_map>
 
 #include "planar/predicates.h"
+#include "quality/aabb_tree.h"
 #include "core/detmath.h"
 
 namespace conformesh::optimization {
@@ -71,6 +72,11 @@ struct Mesh {
   const std::vector<uint8_t>& fixed;
   std::vector<uint32_t> starStart, starTri;  // CSR vertex -> triangles
   std::vector<double> minAngle;              // cached 3D min angle per triangle (degrees)
+  // the guard (SurfaceSamples): per triangle a list (head, next) of the points whose planar
+  // position it contains, and the largest squared 3D distance from them to the triangle
+  const SurfaceSamples* guard = nullptr;
+  std::vector<uint32_t> head, next;
+  std::vector<double> err;
 
   const double* p(uint32_t v) const { return &xy[2 * size_t(v)]; }
   double triMin(uint32_t t) const {
@@ -92,6 +98,117 @@ struct Mesh {
       for (int c = 0; c < 3; ++c) starTri[fill[tri[3 * t + c]]++] = uint32_t(t);
   }
 };
+
+
+// The guard (see SurfaceSamples in the header). Each guard point is listed in the triangle
+// that contains it in the plane (a floating-point test: the guard is a bound on a distance, not
+// part of the mesh's validity, and a point found in no triangle is simply not tracked); err[t] is
+// the largest squared 3D distance from t's points to t. A change of a star keeps the output's
+// distance from those points within max(tolerance, the largest err of the star) measured as the
+// distance to the nearest triangle of the star.
+inline double cross2(const double* a, const double* b, const double* p) {
+  return (b[0] - a[0]) * (p[1] - a[1]) - (b[1] - a[1]) * (p[0] - a[0]);
+}
+bool contains(const Mesh& m, const uint32_t* t, const double* p) {
+  return cross2(m.p(t[0]), m.p(t[1]), p) >= 0 && cross2(m.p(t[1]), m.p(t[2]), p) >= 0 && cross2(m.p(t[2]), m.p(t[0]), p) >= 0;
+}
+
+double distance2(const Mesh& m, const uint32_t* t, const Vec3& x) {
+  auto q = [](const Vec3& v) { return quality::Vec3{v.x, v.y, v.z}; };
+  const quality::Vec3 X = q(x);
+  return quality::distanceSquared(X, quality::closestPointOnTriangle(X, q(m.pos[t[0]]), q(m.pos[t[1]]), q(m.pos[t[2]])));
+}
+
+// Sort the guard points into the triangles that contain them (a grid over the patch's planar
+// bounding box, about one triangle per cell). Points outside every triangle (beyond a boundary
+// chord) are not tracked.
+void bucketGuard(Mesh& m) {
+  const size_t nt = m.tri.size() / 3, ns = m.guard->pos.size();
+  m.head.assign(nt, kNoTri);
+  m.next.assign(ns, kNoTri);
+  m.err.assign(nt, 0.0);
+  if (nt == 0) return;
+  double lo[2] = {INFINITY, INFINITY}, hi[2] = {-INFINITY, -INFINITY};
+  for (size_t i = 0; i < m.xy.size(); ++i) lo[i % 2] = std::min(lo[i % 2], m.xy[i]), hi[i % 2] = std::max(hi[i % 2], m.xy[i]);
+  const int g = std::max(1, std::min(4096, int(std::sqrt(double(nt)))));
+  auto cell = [&](double x, int d) {
+    const double f = hi[d] > lo[d] ? (x - lo[d]) / (hi[d] - lo[d]) : 0.0;
+    return std::clamp(int(f * g), 0, g - 1);
+  };
+  std::vector<uint32_t> start(size_t(g) * g + 1, 0), items;
+  for (int pass = 0; pass < 2; ++pass) {
+    std::vector<uint32_t> fill(start.begin(), start.end() - 1);
+    for (uint32_t t = 0; t < nt; ++t) {
+      const uint32_t* v = &m.tri[3 * size_t(t)];
+      int c0[2], c1[2];
+      for (int d = 0; d < 2; ++d) {
+        const double a = std::min({m.p(v[0])[d], m.p(v[1])[d], m.p(v[2])[d]}), b = std::max({m.p(v[0])[d], m.p(v[1])[d], m.p(v[2])[d]});
+        c0[d] = cell(a, d), c1[d] = cell(b, d);
+      }
+      for (int j = c0[1]; j <= c1[1]; ++j)
+        for (int i = c0[0]; i <= c1[0]; ++i) {
+          const size_t c = size_t(j) * g + i;
+          if (pass == 0) ++start[c + 1];
+          else items[fill[c]++] = t;
+        }
+    }
+    if (pass == 0) {
+      for (size_t c = 0; c + 1 < start.size(); ++c) start[c + 1] += start[c];
+      items.resize(start.back());
+    }
+  }
+  for (uint32_t k = 0; k < ns; ++k) {
+    const double* p = &m.guard->xy[2 * size_t(k)];
+    if (p[0] < lo[0] || p[0] > hi[0] || p[1] < lo[1] || p[1] > hi[1]) continue;
+    const size_t c = size_t(cell(p[1], 1)) * g + cell(p[0], 0);
+    for (uint32_t i = start[c]; i < start[c + 1]; ++i) {
+      const uint32_t t = items[i];
+      if (!contains(m, &m.tri[3 * size_t(t)], p)) continue;
+      m.next[k] = m.head[t];
+      m.head[t] = k;
+      m.err[t] = std::max(m.err[t], distance2(m, &m.tri[3 * size_t(t)], m.guard->pos[k]));
+      break;
+    }
+  }
+}
+
+// Would the guard keep the change that made triangles ts[0..n) (a star, or the two triangles
+// of a flip: the same region before and after)? `moved`: how far the change moved the 3D
+// surface at most (a bound on the change of every point's distance; infinity when unknown).
+bool guardAccepts(const Mesh& m, const uint32_t* ts, size_t n, double moved = INFINITY) {
+  if (!m.guard) return true;
+  double before = 0;
+  for (size_t i = 0; i < n; ++i) before = std::max(before, m.err[ts[i]]);
+  const double allowed = std::max(before, sq(m.guard->tolerance));
+  if (std::sqrt(before) + moved <= m.guard->tolerance) return true;  // no point can get past it
+  for (size_t i = 0; i < n; ++i)
+    for (uint32_t k = m.head[ts[i]]; k != kNoTri; k = m.next[k]) {
+      double d = INFINITY;
+      for (size_t j = 0; j < n && d > allowed; ++j) d = std::min(d, distance2(m, &m.tri[3 * size_t(ts[j])], m.guard->pos[k]));
+      if (d > allowed) return false;
+    }
+  return true;
+}
+
+// After a kept change: the guard points of ts[0..n) go to their new triangles.
+void rebucket(Mesh& m, const uint32_t* ts, size_t n) {
+  if (!m.guard) return;
+  std::vector<uint32_t> pts;
+  for (size_t i = 0; i < n; ++i) {
+    for (uint32_t k = m.head[ts[i]]; k != kNoTri; k = m.next[k]) pts.push_back(k);
+    m.head[ts[i]] = kNoTri;
+    m.err[ts[i]] = 0;
+  }
+  for (uint32_t k : pts)
+    for (size_t j = 0; j < n; ++j) {
+      const uint32_t t = ts[j];
+      if (!contains(m, &m.tri[3 * size_t(t)], &m.guard->xy[2 * size_t(k)])) continue;
+      m.next[k] = m.head[t];
+      m.head[t] = k;
+      m.err[t] = std::max(m.err[t], distance2(m, &m.tri[3 * size_t(t)], m.guard->pos[k]));
+      break;
+    }
+}
 
 // Try moving v to (x, y): accepted when no star triangle inverts in the plane and the star's 3D
 // min angles improve under the bound rule (see the header). Returns whether it moved.
@@ -164,13 +281,21 @@ bool tryMove(Mesh& m, uint32_t v, double x, double y, const LiftFn& lift, double
     newSum += a;
   }
   const bool better = oldMin < bound ? newMin > oldMin + 1e-9 : newSum > oldSum + 1e-9 * n;
-  if (newMin < floor || !better) {
+  bool kept = newMin >= floor && better;
+  if (kept && m.guard) {
+    const double ox = m.xy[2 * size_t(v)], oy = m.xy[2 * size_t(v) + 1];
+    m.xy[2 * size_t(v)] = x, m.xy[2 * size_t(v) + 1] = y;
+    kept = guardAccepts(m, s, n, features::norm(P - keep));
+    m.xy[2 * size_t(v)] = ox, m.xy[2 * size_t(v) + 1] = oy;
+  }
+  if (!kept) {
     m.pos[v] = keep;
     return false;
   }
   m.xy[2 * size_t(v)] = x;
   m.xy[2 * size_t(v) + 1] = y;
   for (size_t i = 0; i < n; ++i) m.minAngle[s[i]] = i < kBuf ? fresh[i] : m.triMin(s[i]);
+  rebucket(m, s, n);
   old = {newMin, newSum};
   return true;
 }
@@ -194,6 +319,29 @@ bool odtTarget(const Mesh& m, uint32_t v, double out[2]) {
   return true;
 }
 
+// Mean of the apexes of the equilateral triangles on the edges opposite v in its star: each
+// triangle's own ideal place for v, averaged (the element-wise regularisation of GETMe smoothing,
+// Vartziotis–Wipper 2009, in its simplest form). Unlike the ODT position it follows the local
+// edge lengths, so it does not fight a graded mesh.
+bool equilateralTarget(const Mesh& m, uint32_t v, double out[2]) {
+  double sx = 0, sy = 0;
+  int n = 0;
+  for (uint32_t k = m.starStart[v]; k < m.starStart[v + 1]; ++k) {
+    const uint32_t* t = &m.tri[3 * size_t(m.starTri[k])];
+    int c = t[0] == v ? 0 : t[1] == v ? 1 : 2;
+    const double *a = m.p(t[(c + 1) % 3]), *b = m.p(t[(c + 2) % 3]);
+    const double dx = b[0] - a[0], dy = b[1] - a[1];
+    constexpr double h = 0.86602540378443864676;
+    sx += 0.5 * (a[0] + b[0]) - h * dy;
+    sy += 0.5 * (a[1] + b[1]) + h * dx;
+    ++n;
+  }
+  if (n == 0) return false;
+  out[0] = sx / n;
+  out[1] = sy / n;
+  return true;
+}
+
 // Centroid of the vertices of v's star (v itself excluded; each neighbour counted once per
 // triangle, which weights it by the triangles it shares with v).
 bool neighbourCentroid(const Mesh& m, uint32_t v, double out[2]) {
@@ -210,10 +358,27 @@ bool neighbourCentroid(const Mesh& m, uint32_t v, double out[2]) {
   return true;
 }
 
+
+// Flip guard: with t0 = (c0, x, c1) and t1 = (c1, y, c0) in place of the current two, would the
+// guard keep the flip? m is left as it was.
+bool guardAcceptsFlip(Mesh& m, uint32_t t0, uint32_t t1, uint32_t c0, uint32_t x, uint32_t c1, uint32_t y) {
+  if (!m.guard) return true;
+  uint32_t* a = &m.tri[3 * size_t(t0)];
+  uint32_t* b = &m.tri[3 * size_t(t1)];
+  const std::array<uint32_t, 3> oa{a[0], a[1], a[2]}, ob{b[0], b[1], b[2]};
+  a[0] = c0, a[1] = x, a[2] = c1;
+  b[0] = c1, b[1] = y, b[2] = c0;
+  const uint32_t ts[2] = {t0, t1};
+  const bool ok = guardAccepts(m, ts, 2);
+  std::copy(oa.begin(), oa.end(), a);
+  std::copy(ob.begin(), ob.end(), b);
+  return ok;
+}
+
 // One pass of flips: an interior edge flips when its quad is strictly convex in the plane and
 // the smaller 3D min angle of its two triangles gets larger. Returns the number of flips.
 // Pre: m's stars are current (built after the last change of m.tri).
-size_t flipPass(Mesh& m, std::vector<uint8_t>& touched) {
+size_t flipPass(Mesh& m, std::vector<uint8_t>& touched, const std::vector<uint8_t>& region) {
   auto key = [](uint32_t a, uint32_t b) { return (uint64_t(std::min(a, b)) << 32) | std::max(a, b); };
   const uint32_t nt = uint32_t(m.tri.size() / 3), nv = uint32_t(m.xy.size() / 2);
   // The triangles of an edge, first the one of smaller index, are found in the (pass-start)
@@ -231,7 +396,8 @@ size_t flipPass(Mesh& m, std::vector<uint8_t>& touched) {
     return e;
   };
   // The interior edges in increasing key order (deterministic), from the stars: (a, b), a < b,
-  // is interior when b is in two triangles of a's star.
+  // is interior when b is in two triangles of a's star. Only edges with an end in `region`: an
+  // edge whose quad did not change since the last pass refused it would refuse it again.
   std::vector<uint64_t> edges;
   edges.reserve(3 * size_t(nt) / 2 + 1);
   std::vector<uint32_t> nb;
@@ -239,7 +405,7 @@ size_t flipPass(Mesh& m, std::vector<uint8_t>& touched) {
     nb.clear();
     for (uint32_t k = m.starStart[a]; k < m.starStart[a + 1]; ++k)
       for (int c = 0; c < 3; ++c)
-        if (m.tri[3 * size_t(m.starTri[k]) + c] > a) nb.push_back(m.tri[3 * size_t(m.starTri[k]) + c]);
+        if (const uint32_t b = m.tri[3 * size_t(m.starTri[k]) + c]; b > a && (region[a] || region[b])) nb.push_back(b);
     std::sort(nb.begin(), nb.end());
     for (size_t i = 0; i + 1 < nb.size(); ++i)
       if (nb[i] == nb[i + 1]) {
@@ -276,7 +442,7 @@ size_t flipPass(Mesh& m, std::vector<uint8_t>& touched) {
     const double l2 = sq(m.p(c0)[0] - m.p(c1)[0]) + sq(m.p(c0)[1] - m.p(c1)[1]);
     if (!(orient2d(m.p(c0), m.p(x), m.p(c1)) > 1e-6 * l2) || !(orient2d(m.p(c1), m.p(y), m.p(c0)) > 1e-6 * l2)) continue;
     const double n0 = cornerDeg(k0), n1 = cornerDeg(k1);
-    if (!(std::min(n0, n1) > before + 1e-6)) continue;
+    if (!(std::min(n0, n1) > before + 1e-6) || !guardAcceptsFlip(m, t0, t1, c0, x, c1, y)) continue;
     m.minAngle[t0] = n0;
     m.minAngle[t1] = n1;
     // the edges (x, c1) of t1 and (y, c0) of t0 change sides (read before the triangles change)
@@ -294,6 +460,10 @@ size_t flipPass(Mesh& m, std::vector<uint8_t>& touched) {
     changed[key(x, c1)] = xc1;
     changed[key(y, c0)] = yc0;
     touched[x] = touched[y] = touched[c0] = touched[c1] = 1;
+    {
+      const uint32_t ts[2] = {t0, t1};
+      rebucket(m, ts, 2);
+    }
     ++flips;
   }
   return flips;
@@ -314,16 +484,21 @@ double minAngleDeg3(const Vec3& a, const Vec3& b, const Vec3& c) { return corner
 double minAngleDeg3Approx(const Vec3& a, const Vec3& b, const Vec3& c) { return cornerDegApprox(smallestCorner(a, b, c)); }
 
 OptimizeStats optimizePatch(std::vector<double>& xy, std::vector<uint32_t>& triangles, std::vector<Vec3>& pos,
-                            const std::vector<uint8_t>& fixed, const LiftFn& lift, const OptimizeOptions& o) {
-  Mesh m{xy, triangles, pos, fixed, {}, {}, {}};
+                            const std::vector<uint8_t>& fixed, const LiftFn& lift, const OptimizeOptions& o,
+                            const std::vector<uint8_t>& active0, const SurfaceSamples& guard) {
+  Mesh m{xy, triangles, pos, fixed, {}, {}, {}, nullptr, {}, {}, {}};
   OptimizeStats st;
   m.cacheAll();
+  if (!guard.pos.empty()) {
+    m.guard = &guard;
+    bucketGuard(m);
+  }
   st.meanMinAngleBefore = st.meanMinAngleAfter = meanMin(m);
   const size_t nv = xy.size() / 2;
   double last = st.meanMinAngleBefore;
   // active set: a vertex is visited while it or a neighbour moved (or a flip touched its star)
   // in the previous pass
-  std::vector<uint8_t> active(nv, 1), nextActive(nv, 0);
+  std::vector<uint8_t> active = active0.size() == nv ? active0 : std::vector<uint8_t>(nv, 1), nextActive(nv, 0), changed(nv, 0);
   for (int it = 0; it < o.maxIterations; ++it) {
     m.buildStars();
     std::fill(nextActive.begin(), nextActive.end(), 0);
@@ -331,10 +506,14 @@ OptimizeStats optimizePatch(std::vector<double>& xy, std::vector<uint32_t>& tria
       if (fixed[v] || !active[v] || m.starStart[v] == m.starStart[v + 1]) continue;
       const double x = xy[2 * size_t(v)], y = xy[2 * size_t(v) + 1];
       StarQuality q = starQuality(m, v);
-      // candidates, the first accepted wins: the ODT position, the centroid of the neighbours
-      // (Laplacian: helps where a big star triangle pulls the ODT position off), then half steps
-      double cand[4][2];
+      // candidates, the first accepted wins: the mean of the star's equilateral apexes, the ODT
+      // position, the centroid of the neighbours (Laplacian: helps where a big star triangle
+      // pulls the ODT position off), then half steps
+      double cand[6][2];
       int nc = 0;
+      double eq[2];
+      const bool eqOk = equilateralTarget(m, v, eq);
+      if (eqOk) cand[nc][0] = eq[0], cand[nc][1] = eq[1], ++nc;
       double t[2] = {x, y};
       const bool odt = odtTarget(m, v, t);
       if (odt) cand[nc][0] = t[0], cand[nc][1] = t[1], ++nc;
@@ -343,6 +522,7 @@ OptimizeStats optimizePatch(std::vector<double>& xy, std::vector<uint32_t>& tria
       if (lap) cand[nc][0] = l[0], cand[nc][1] = l[1], ++nc;
       if (odt) cand[nc][0] = 0.5 * (x + t[0]), cand[nc][1] = 0.5 * (y + t[1]), ++nc;
       if (lap) cand[nc][0] = 0.5 * (x + l[0]), cand[nc][1] = 0.5 * (y + l[1]), ++nc;
+      if (eqOk) cand[nc][0] = 0.5 * (x + eq[0]), cand[nc][1] = 0.5 * (y + eq[1]), ++nc;
       bool moved = false;
       for (int c = 0; c < nc && !moved; ++c) moved = tryMove(m, v, cand[c][0], cand[c][1], lift, o.minAngleDeg, q);
       // a star still under the bound: a local search for a better min angle (8 directions, two
@@ -366,7 +546,8 @@ OptimizeStats optimizePatch(std::vector<double>& xy, std::vector<uint32_t>& tria
       for (uint32_t k = m.starStart[v]; k < m.starStart[v + 1]; ++k)
         for (int c = 0; c < 3; ++c) nextActive[m.tri[3 * size_t(m.starTri[k]) + c]] = 1;
     }
-    const size_t flips = flipPass(m, nextActive);
+    for (size_t v = 0; v < nv; ++v) changed[v] = active[v] | nextActive[v];
+    const size_t flips = flipPass(m, nextActive, changed);
     st.flips += flips;
     active.swap(nextActive);
     st.iterations = it + 1;

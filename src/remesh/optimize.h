@@ -1,13 +1,16 @@
 // conformesh — optimization of a patch's planar mesh after refinement, judged in 3D (issue 9).
 //
-// Vertex moves toward the optimal Delaunay triangulation position (ODT: the area-weighted mean
-// of the circumcenters of the star; Chen–Xu 2004, Alliez et al. 2005 "Variational tetrahedral
-// meshing") and edge flips, both done in the conformal plane of the patch, where the planar mesh
-// stays a valid triangulation, and both accepted only when the lifted 3D triangles get better:
-// the star's smallest 3D angle never drops below the bound (or below its own value when it is
-// already under the bound), no planar triangle inverts, and every vertex stays on the input
-// surface (it is lifted by the pull-back). Boundary vertices (curve samples) never move and
-// boundary edges never flip, so features and the stitch between patches are untouched.
+// Vertex moves toward the mean of the star's equilateral apexes (each star triangle's ideal
+// place for the vertex: follows a graded mesh), the optimal Delaunay triangulation position
+// (ODT: the area-weighted mean of the circumcenters of the star; Chen–Xu 2004, Alliez et al. 2005
+// "Variational tetrahedral meshing"), the neighbours' centroid, and half steps; and edge flips.
+// Both are done in the conformal plane of the patch, where the planar mesh stays a valid
+// triangulation, and both are accepted only when the lifted 3D triangles get better: the star's
+// smallest 3D angle never drops below the bound (or below its own value when it is already under
+// the bound), no planar triangle inverts, and every vertex stays on the input surface (it is
+// lifted by the pull-back). Boundary vertices (curve samples) never move here and boundary edges
+// never flip, so features and the stitch between patches are untouched; the pipeline slides the
+// curve samples along their curves itself (remesh.cpp, slideSamples), in every patch at once.
 #pragma once
 
 #include <cstdint>
@@ -35,11 +38,29 @@ struct OptimizeStats {
 //! vertex being moved there (lets the lift start its point location where v's last lift landed).
 using LiftFn = std::function<bool(uint32_t v, double x, double y, features::Vec3& out)>;
 
+//! A guard: points of the input surface in the patch (e.g. its input vertices), planar (xy: 2 per
+//! point, in the patch's plane) and 3D (pos). When given, each point is kept listed in the output
+//! triangle over it in the plane, and a move or flip is kept only if no point of the triangles it
+//! changes ends up farther (3D distance to the nearest of those triangles after the change) than
+//! `tolerance` or, when one of them was farther than that before (distance to its triangle), than
+//! the farthest was: the optimization never takes the output beyond the tolerance from these
+//! points where it was within it, nor farther where it was not (a local, per-point bound on the
+//! input-to-output Hausdorff distance). Points in no triangle (beyond a boundary chord) are not
+//! tracked.
+struct SurfaceSamples {
+  std::vector<double> xy;
+  std::vector<features::Vec3> pos;
+  double tolerance = 0;  //!< 3D length
+};
+
 //! Optimize in place. xy: 2 per vertex (planar); triangles: 3 per triangle, counter-clockwise
 //! in the plane; pos: 3D position per vertex (pos[v] must be the lift of xy[v]); fixed[v]: the
 //! vertex does not move. Edges used by one triangle only are boundary edges and never flip.
+//! active: the vertices the first pass visits (empty: all); later passes visit those whose star
+//! changed in the pass before.
 OptimizeStats optimizePatch(std::vector<double>& xy, std::vector<uint32_t>& triangles, std::vector<features::Vec3>& pos,
-                            const std::vector<uint8_t>& fixed, const LiftFn& lift, const OptimizeOptions& options);
+                            const std::vector<uint8_t>& fixed, const LiftFn& lift, const OptimizeOptions& options,
+                            const std::vector<uint8_t>& active = {}, const SurfaceSamples& guard = {});
 
 //! Smallest angle of the 3D triangle (a, b, c), in degrees.
 double minAngleDeg3(const features::Vec3& a, const features::Vec3& b, const features::Vec3& c);

@@ -149,3 +149,101 @@ TEST_CASE("optimize: the approximate min angle is within its 1e-4 degree bound (
   MESSAGE("worst |approx - exact|: " << worst << " degrees");
   CHECK(worst < 1e-5);  // the optimizer assumes 1e-4
 }
+
+namespace {
+// Largest 3D distance from the guard points to the triangle that contains each in the plane
+// (points in no triangle are skipped).
+double guardDistance(const std::vector<double>& xy, const std::vector<uint32_t>& tri, const std::vector<Vec3>& pos,
+                     const optimization::SurfaceSamples& g) {
+  double worst = 0;
+  for (size_t k = 0; k < g.pos.size(); ++k) {
+    const double px = g.xy[2 * k], py = g.xy[2 * k + 1];
+    for (size_t t = 0; t < tri.size(); t += 3) {
+      const double* a = &xy[2 * tri[t]];
+      const double* b = &xy[2 * tri[t + 1]];
+      const double* c = &xy[2 * tri[t + 2]];
+      auto side = [&](const double* u, const double* v) { return (v[0] - u[0]) * (py - u[1]) - (v[1] - u[1]) * (px - u[0]); };
+      if (side(a, b) < 0 || side(b, c) < 0 || side(c, a) < 0) continue;
+      // the closest point of the 3D triangle, by a fine barycentric scan (test only)
+      double best = INFINITY;
+      const Vec3 &A = pos[tri[t]], &B = pos[tri[t + 1]], &C = pos[tri[t + 2]];
+      for (int i = 0; i <= 60; ++i)
+        for (int j = 0; i + j <= 60; ++j) {
+          const Vec3 q = A * (1 - (i + j) / 60.0) + B * (i / 60.0) + C * (j / 60.0);
+          best = std::min(best, features::norm(q - g.pos[k]));
+        }
+      worst = std::max(worst, best);
+      break;
+    }
+  }
+  return worst;
+}
+}  // namespace
+
+TEST_CASE("optimize: with a guard, the output gets no farther from the guard points than the tolerance or than it was") {
+  auto surface = [](double x, double y) { return Vec3{x, y, 0.8 * (x * x + y * y)}; };
+  Grid g = jitteredGrid(10, 0.35);
+  std::vector<Vec3> pos;
+  for (size_t v = 0; v < g.fixed.size(); ++v) pos.push_back(surface(g.xy[2 * v], g.xy[2 * v + 1]));
+  // guard points: a regular 23 x 23 lattice of the surface
+  optimization::SurfaceSamples guard;
+  for (int j = 0; j <= 22; ++j)
+    for (int i = 0; i <= 22; ++i) {
+      guard.xy.push_back(i / 22.0);
+      guard.xy.push_back(j / 22.0);
+      guard.pos.push_back(surface(i / 22.0, j / 22.0));
+    }
+  const double before = guardDistance(g.xy, g.tri, pos, guard);
+  REQUIRE(before > 0);
+  auto lift = [&](uint32_t, double x, double y, Vec3& out) {
+    if (x < 0 || y < 0 || x > 1 || y > 1) return false;
+    out = surface(x, y);
+    return true;
+  };
+  optimization::OptimizeOptions o;
+  o.minAngleDeg = 20;
+  for (double tolerance : {0.0, 0.5 * before}) {
+    INFO("tolerance " << tolerance);
+    Grid h = g;
+    std::vector<Vec3> p = pos;
+    guard.tolerance = tolerance;
+    auto st = optimization::optimizePatch(h.xy, h.tri, p, h.fixed, lift, o, {}, guard);
+    CHECK(st.moves > 0);
+    CHECK(st.meanMinAngleAfter > st.meanMinAngleBefore);
+    // the scan finds the closest point to within a fraction of a percent of the distance
+    CHECK(guardDistance(h.xy, h.tri, p, guard) <= std::max(before, tolerance) * 1.001);
+  }
+}
+
+TEST_CASE("optimize: an empty first active set changes nothing; a partial one moves only near it") {
+  Grid g = jitteredGrid(12, 0.35);
+  std::vector<Vec3> pos;
+  for (size_t v = 0; v < g.fixed.size(); ++v) pos.push_back({g.xy[2 * v], g.xy[2 * v + 1], 0});
+  auto lift = [](uint32_t, double x, double y, Vec3& out) {
+    if (x < 0 || y < 0 || x > 1 || y > 1) return false;
+    out = {x, y, 0};
+    return true;
+  };
+  optimization::OptimizeOptions o;
+  o.maxIterations = 1;
+  {
+    Grid h = g;
+    std::vector<Vec3> p = pos;
+    auto st = optimization::optimizePatch(h.xy, h.tri, p, h.fixed, lift, o, std::vector<uint8_t>(h.fixed.size(), 0));
+    CHECK(st.moves == 0);
+    CHECK(st.flips == 0);
+    CHECK(h.xy == g.xy);
+    CHECK(h.tri == g.tri);
+  }
+  {
+    // one active vertex, one pass: only it may move
+    Grid h = g;
+    std::vector<Vec3> p = pos;
+    std::vector<uint8_t> active(h.fixed.size(), 0);
+    const uint32_t v0 = 6 * 13 + 6;  // the middle of the grid
+    active[v0] = 1;
+    optimization::optimizePatch(h.xy, h.tri, p, h.fixed, lift, o, active);
+    for (size_t v = 0; v < h.fixed.size(); ++v)
+      if (v != v0) CHECK(h.xy[2 * v] == g.xy[2 * v]);
+  }
+}
