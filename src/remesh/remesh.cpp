@@ -1,6 +1,7 @@
 #include "remesh/remesh.h"
 
 #include <algorithm>
+#include <array>
 #include <chrono>
 #include <cstdio>
 #include <cstdlib>
@@ -116,7 +117,8 @@ class Pipeline {
   void indexSamples();
   std::vector<BoundaryPoint> boundaryPoints(const PatchWork& w) const;
   void meshPatch(uint32_t p, bool splitSegments = true);
-  void optimizeMesh(uint32_t p);
+  void optimizeMesh(uint32_t p, const std::vector<uint8_t>& active = {});
+  std::vector<std::vector<uint8_t>> slideSamples();
   bool liftPoint(const PatchWork& w, double x, double y, PullbackPoint& q, int hintFace = -1) const;
   std::vector<Piece> stretch(const PatchWork& w, const BoundaryPoint& p0, const BoundaryPoint& p1, size_t points) const;
   uint32_t addSplitSample(const PatchWork& w, const std::vector<BoundaryPoint>& bp, uint32_t s, double t);
@@ -684,7 +686,7 @@ void Pipeline::meshPatch(uint32_t p, bool splitSegments) {
 }
 
 // Optimize a patch's latest meshing in its plane, judged in 3D (remesh/optimize.h).
-void Pipeline::optimizeMesh(uint32_t p) {
+void Pipeline::optimizeMesh(uint32_t p, const std::vector<uint8_t>& active) {
   PatchWork& w = *work_[p];
   w.optimized = true;
   if (!opt_.optimize || opt_.optimizeIterations == 0) return;
@@ -708,12 +710,280 @@ void Pipeline::optimizeMesh(uint32_t p) {
     out = {q.position[0], q.position[1], q.position[2]};
     return true;
   };
-  optimization::OptimizeStats st = optimization::optimizePatch(w.planarPoints, w.triangles, pos, fixed, lift, oo);
+  // the patch's input vertices, where it is: the moves must not take the output farther from them
+  // a second optimization (after slides): its input vertices guard it (optimize.h), so that it
+  // does not take the output farther from the input than the first one left it
+  optimization::SurfaceSamples guard;
+  if (!active.empty()) {
+    guard.xy = w.flat.uv;
+    guard.pos.resize(w.pm.vertexInput.size());
+    for (size_t v = 0; v < guard.pos.size(); ++v) guard.pos[v] = g_.positions[w.pm.vertexInput[v]];
+    guard.tolerance = opt_.chordTolerance >= 0 ? opt_.chordTolerance : opt_.chordToleranceRel * sizing_.diagonal;
+  }
+  optimization::OptimizeStats st = optimization::optimizePatch(w.planarPoints, w.triangles, pos, fixed, lift, oo, active, guard);
   for (size_t v = 0; v < nv; ++v)
     if (!fixed[v]) w.interiorPositions[v] = pos[v];
   rep_.optimizeMoves += st.moves;
   rep_.optimizeFlips += st.flips;
   optimizeSeconds_ += elapsed(t0);
+}
+
+
+// Curve samples slide along their input edge (issue 9), in every patch that holds them at once
+// (a curve sample is shared by the patches on both sides): its 3D position moves along the input
+// edge and its planar position along that edge's image in each patch's layout. Candidates: toward
+// the 3D midpoint of its two neighbours along the curve (full and half step) and six points
+// spread over its free interval (no lift is needed on a curve, so the search is cheap); the best
+// kept one wins. A slide is kept under optimizePatch's rule over the union of the sample's stars
+// in all those patches: no planar triangle inverts, every 3D min angle stays >= the bound, and
+// their sum grows (stars with a triangle under the bound do not slide). The sample stays strictly
+// inside its input edge, so on the feature curve and on the surface, and never passes another
+// sample of that edge; the input curve's vertices between its two neighbours never get farther
+// from the chords. Two passes at most (the second over the samples next to one that slid).
+// Returns, per patch, the vertices whose star changed (empty when none): where to optimize again.
+std::vector<std::vector<uint8_t>> Pipeline::slideSamples() {
+  std::vector<std::vector<uint8_t>> slid(work_.size());
+  auto t0 = std::chrono::steady_clock::now();
+  const size_t nS = cm_.samples.size();
+  const double bound = opt_.minAngleDeg;
+  struct Hold {
+    uint32_t p, v;
+  };
+  // per patch: vertex -> triangles (CSR), cached 3D min angle per triangle, and per input edge
+  // the boundary loop halfedges that lie on it
+  struct Star {
+    std::vector<uint32_t> start, tri;
+    std::vector<double> minAngle;
+    std::unordered_map<uint32_t, std::vector<uint32_t>> loopOfEdge;
+  };
+  std::vector<Star> stars(work_.size());
+  std::vector<std::vector<Hold>> holds(nS);
+  auto pos3 = [&](const PatchWork& w, uint32_t v) -> const F::Vec3& {
+    return w.localToGlobal[v] != kNone ? cm_.samples[w.localToGlobal[v]].position : w.interiorPositions[v];
+  };
+  for (uint32_t p = 0; p < work_.size(); ++p) {
+    const PatchWork& w = *work_[p];
+    Star& st = stars[p];
+    const size_t nv = w.localToGlobal.size(), nt = w.triangles.size() / 3;
+    st.start.assign(nv + 1, 0);
+    for (uint32_t v : w.triangles) ++st.start[v + 1];
+    for (size_t i = 0; i < nv; ++i) st.start[i + 1] += st.start[i];
+    st.tri.assign(w.triangles.size(), 0);
+    std::vector<uint32_t> fill(st.start.begin(), st.start.end() - 1);
+    for (size_t t = 0; t < nt; ++t)
+      for (int c = 0; c < 3; ++c) st.tri[fill[w.triangles[3 * t + c]]++] = uint32_t(t);
+    st.minAngle.resize(nt);
+    for (size_t t = 0; t < nt; ++t)
+      st.minAngle[t] = optimization::minAngleDeg3(pos3(w, w.triangles[3 * t]), pos3(w, w.triangles[3 * t + 1]), pos3(w, w.triangles[3 * t + 2]));
+    const auto& loop = w.pm.boundaryLoops[0];
+    for (uint32_t k = 0; k < loop.size(); ++k) st.loopOfEdge[g_.faceEdges[w.pm.faceInput[loop[k].face]][loop[k].corner]].push_back(k);
+    for (uint32_t v = 0; v < nv; ++v)
+      if (w.localToGlobal[v] != kNone) holds[w.localToGlobal[v]].push_back({p, v});
+  }
+  // planar position in patch w of the point at parameter t of input edge e, on loop halfedge k
+  auto planarAt = [&](const PatchWork& w, uint32_t k, uint32_t e, double t, double out[2]) {
+    const auto& h = w.pm.boundaryLoops[0][k];
+    const uint32_t a = w.pm.mesh.triangles[3 * h.face + h.corner], b = w.pm.mesh.triangles[3 * h.face + (h.corner + 1) % 3];
+    const double tt = g_.edgeVerts[e][0] == w.pm.vertexInput[a] ? t : 1.0 - t;
+    const auto& uv = w.flat.uv;
+    out[0] = uv[2 * a] + tt * (uv[2 * b] - uv[2 * a]);
+    out[1] = uv[2 * a + 1] + tt * (uv[2 * b + 1] - uv[2 * a + 1]);
+  };
+  constexpr int kPasses = 2;  // hard cap
+  std::vector<double> fresh;
+  std::vector<std::array<double, 2>> newXY;
+  std::vector<uint32_t> loopK;
+  // a sample is tried again in the next pass when a sample of its star slid
+  std::vector<uint8_t> activeS(nS, 1), nextS(nS, 0);
+  for (int pass = 0; pass < kPasses; ++pass) {
+    size_t slides = 0;
+    std::fill(nextS.begin(), nextS.end(), 0);
+    for (uint32_t s = 0; s < nS; ++s) {
+      F::CurveSample& smp = cm_.samples[s];
+      if (!activeS[s] || smp.vertex != kNone || smp.edge == kNone || holds[s].empty()) continue;
+      const uint32_t e = smp.edge;
+      // the free interval on the edge: up to the nearest samples on it (or its ends)
+      double lo = 0, hi = 1;
+      for (uint32_t o : edgeSamples_[e]) {
+        if (o == s) continue;
+        const double to = cm_.samples[o].t;
+        if (to < smp.t) lo = std::max(lo, to);
+        else hi = std::min(hi, to);
+      }
+      // the sample's neighbours along its curve: the other ends of its boundary edges in the
+      // first patch that holds it (an edge of one triangle only)
+      const Hold h0 = holds[s][0];
+      const PatchWork& w0 = *work_[h0.p];
+      const Star& st0 = stars[h0.p];
+      std::vector<uint32_t> nb;
+      for (uint32_t i = st0.start[h0.v]; i < st0.start[h0.v + 1]; ++i) {
+        const uint32_t* t = &w0.triangles[3 * size_t(st0.tri[i])];
+        for (int c = 0; c < 3; ++c)
+          if (t[c] == h0.v) {
+            nb.push_back(t[(c + 1) % 3]);
+            nb.push_back(t[(c + 2) % 3]);
+          }
+      }
+      std::sort(nb.begin(), nb.end());
+      F::Vec3 mid{0, 0, 0};
+      uint32_t endSample[2] = {kNone, kNone};
+      int ends = 0;
+      for (size_t i = 0; i < nb.size(); ++i) {
+        const bool single = (i == 0 || nb[i - 1] != nb[i]) && (i + 1 == nb.size() || nb[i + 1] != nb[i]);
+        if (single && w0.localToGlobal[nb[i]] != kNone) {
+          mid = mid + pos3(w0, nb[i]);
+          if (ends < 2) endSample[ends] = w0.localToGlobal[nb[i]];
+          ++ends;
+        }
+      }
+      if (ends != 2) continue;
+      mid = mid * 0.5;
+      // the input curve between the two neighbours: its vertices must not end up farther from
+      // the chords than they are now (the slide keeps the curve's chordal deviation)
+      const uint32_t cv = seg_.edgeCurve[e];
+      if (cv == kNone) continue;
+      const auto& cids = cm_.curveSamples[cv];
+      if (cids.front() == cids.back() && (endSample[0] == cids.front() || endSample[1] == cids.front())) continue;
+      double kPrev = curveKey(cv, endSample[0]), kNext = curveKey(cv, endSample[1]);
+      if (kPrev > kNext) std::swap(kPrev, kNext), std::swap(endSample[0], endSample[1]);
+      const double kSelf = curveKey(cv, s);
+      if (!(kPrev < kSelf && kSelf < kNext)) continue;
+      const auto& cverts = seg_.curves[cv].vertices;
+      auto segDist = [](const F::Vec3& p, const F::Vec3& a, const F::Vec3& b) {
+        const F::Vec3 ab = b - a;
+        const double l = F::dot(ab, ab);
+        const double u = l > 0 ? std::clamp(F::dot(p - a, ab) / l, 0.0, 1.0) : 0.0;
+        return F::norm(p - (a + ab * u));
+      };
+      auto deviation = [&](const F::Vec3& S, double kS) {
+        double d = 0;
+        for (size_t i = size_t(std::floor(kPrev)) + 1; i < cverts.size() && double(i) < kNext; ++i) {
+          const F::Vec3& X = g_.positions[cverts[i]];
+          d = std::max(d, double(i) < kS ? segDist(X, cm_.samples[endSample[0]].position, S) : segDist(X, S, cm_.samples[endSample[1]].position));
+        }
+        return d;
+      };
+      const double devOld = deviation(smp.position, kSelf);
+      const F::Vec3 A = g_.positions[g_.edgeVerts[e][0]], B = g_.positions[g_.edgeVerts[e][1]], AB = B - A;
+      const double l2 = F::dot(AB, AB);
+      if (!(l2 > 0)) continue;
+      // stay clear of the neighbouring samples on the edge by a tenth of the free interval
+      const double margin = 0.1 * (hi - lo);
+      const double target = std::clamp(F::dot(mid - A, AB) / l2, lo + margin, hi - margin);
+      // the loop halfedge of each hold: the one on edge e whose point at t is where the sample is
+      loopK.assign(holds[s].size(), kNone);
+      for (size_t i = 0; i < holds[s].size(); ++i) {
+        const PatchWork& w = *work_[holds[s][i].p];
+        const auto it = stars[holds[s][i].p].loopOfEdge.find(e);
+        if (it == stars[holds[s][i].p].loopOfEdge.end()) continue;
+        double best = INFINITY;
+        for (uint32_t k : it->second) {
+          double q[2];
+          planarAt(w, k, e, smp.t, q);
+          const double d = dmath::hypot(q[0] - w.planarPoints[2 * holds[s][i].v], q[1] - w.planarPoints[2 * holds[s][i].v + 1]);
+          if (d < best) best = d, loopK[i] = k;
+        }
+      }
+      if (std::find(loopK.begin(), loopK.end(), kNone) != loopK.end()) continue;
+      // a seam (a cut with the same patch on both sides) whose two stars share a triangle: the
+      // angles of that triangle would be judged with one copy moved at a time
+      bool shared = false;
+      for (size_t i = 0; i < holds[s].size() && !shared; ++i)
+        for (size_t j = i + 1; j < holds[s].size() && !shared; ++j) {
+          const Hold &a = holds[s][i], &b = holds[s][j];
+          if (a.p != b.p) continue;
+          for (uint32_t x = stars[a.p].start[a.v]; x < stars[a.p].start[a.v + 1] && !shared; ++x)
+            for (uint32_t y = stars[b.p].start[b.v]; y < stars[b.p].start[b.v + 1] && !shared; ++y)
+              shared = stars[a.p].tri[x] == stars[b.p].tri[y];
+        }
+      if (shared) continue;
+      double oldMin = 180, oldSum = 0;
+      for (const Hold& hd : holds[s])
+        for (uint32_t i = stars[hd.p].start[hd.v]; i < stars[hd.p].start[hd.v + 1]; ++i) {
+          const double a = stars[hd.p].minAngle[stars[hd.p].tri[i]];
+          oldMin = std::min(oldMin, a);
+          oldSum += a;
+        }
+      // a star with a triangle under the bound does not slide: which of those triangles an exempt
+      // corner owns depends on where the curve samples are (see exemptCornerOf)
+      if (oldMin < bound) continue;
+      const double floor = bound;
+      // evaluate a candidate parameter: false when it is refused (the rule of the header comment)
+      // (exact: with the exact angles; else with minAngleDeg3Approx, within 1e-4 degrees, to rank)
+      auto evaluate = [&](double t, bool exact, double& newMin, double& newSum, std::vector<double>& angles, std::vector<std::array<double, 2>>& xy) {
+        if (!(t > lo && t < hi) || t == smp.t) return false;
+        const F::Vec3 P = A * (1.0 - t) + B * t;
+        if (deviation(P, kSelf) > devOld) return false;  // the side of each curve vertex does not change within the edge
+        newMin = 180, newSum = 0;
+        angles.clear();
+        xy.assign(holds[s].size(), {0, 0});
+        for (size_t i = 0; i < holds[s].size(); ++i) {
+          const Hold& hd = holds[s][i];
+          const PatchWork& w = *work_[hd.p];
+          planarAt(w, loopK[i], e, t, xy[i].data());
+          for (uint32_t j = stars[hd.p].start[hd.v]; j < stars[hd.p].start[hd.v + 1]; ++j) {
+            const uint32_t* tv = &w.triangles[3 * size_t(stars[hd.p].tri[j])];
+            const double* c[3];
+            F::Vec3 q[3];
+            for (int k = 0; k < 3; ++k) {
+              c[k] = tv[k] == hd.v ? xy[i].data() : &w.planarPoints[2 * size_t(tv[k])];
+              q[k] = tv[k] == hd.v ? P : pos3(w, tv[k]);
+            }
+            const double e2 = std::max({(c[1][0] - c[0][0]) * (c[1][0] - c[0][0]) + (c[1][1] - c[0][1]) * (c[1][1] - c[0][1]),
+                                        (c[2][0] - c[1][0]) * (c[2][0] - c[1][0]) + (c[2][1] - c[1][1]) * (c[2][1] - c[1][1]),
+                                        (c[0][0] - c[2][0]) * (c[0][0] - c[2][0]) + (c[0][1] - c[2][1]) * (c[0][1] - c[2][1])});
+            if (!(planar::orient2d(c[0], c[1], c[2]) > 1e-6 * e2)) return false;
+            const double a = exact ? optimization::minAngleDeg3(q[0], q[1], q[2]) : optimization::minAngleDeg3Approx(q[0], q[1], q[2]);
+            if (!(a >= 0)) return false;  // NaN: a degenerate corner
+            angles.push_back(a);
+            newMin = std::min(newMin, a);
+            newSum += a;
+          }
+        }
+        return newMin >= floor && newSum > oldSum + 1e-9 * double(angles.size());
+      };
+      // candidates: toward the midpoint (full and half step), and evenly over the free interval
+      // (no lift is needed on a curve, so a search is cheap); the best kept one wins
+      constexpr int kSpread = 6;
+      double cand[2 + kSpread] = {target, 0.5 * (smp.t + target)};
+      for (int i = 0; i < kSpread; ++i) cand[2 + i] = lo + margin + (hi - lo - 2 * margin) * (i + 0.5) / kSpread;
+      double bestT = -1, bestSum = -INFINITY;
+      for (const double t : cand) {
+        double mn, sm;
+        if (evaluate(t, false, mn, sm, fresh, newXY) && sm > bestSum) bestSum = sm, bestT = t;
+      }
+      double mn, sm;
+      if (bestT < 0 || !evaluate(bestT, true, mn, sm, fresh, newXY)) continue;
+      {
+        const double t = bestT;
+        const F::Vec3 P = A * (1.0 - t) + B * t;
+        smp.t = t;
+        smp.position = P;
+        size_t f = 0;
+        for (size_t i = 0; i < holds[s].size(); ++i) {
+          const Hold& hd = holds[s][i];
+          PatchWork& w = *work_[hd.p];
+          w.planarPoints[2 * size_t(hd.v)] = newXY[i][0];
+          w.planarPoints[2 * size_t(hd.v) + 1] = newXY[i][1];
+          for (uint32_t j = stars[hd.p].start[hd.v]; j < stars[hd.p].start[hd.v + 1]; ++j) stars[hd.p].minAngle[stars[hd.p].tri[j]] = fresh[f++];
+          // the star's vertices may move again now
+          if (slid[hd.p].empty()) slid[hd.p].assign(w.localToGlobal.size(), 0);
+          for (uint32_t j = stars[hd.p].start[hd.v]; j < stars[hd.p].start[hd.v + 1]; ++j)
+            for (int c = 0; c < 3; ++c) {
+              const uint32_t u = w.triangles[3 * size_t(stars[hd.p].tri[j]) + c];
+              slid[hd.p][u] = 1;
+              if (w.localToGlobal[u] != kNone) nextS[w.localToGlobal[u]] = 1;
+            }
+        }
+        ++slides;
+      }
+    }
+    rep_.optimizeMoves += slides;
+    if (slides == 0) break;
+    activeS.swap(nextS);
+  }
+  optimizeSeconds_ += elapsed(t0);
+  return slid;
 }
 
 MeshBuffers Pipeline::stitch(std::vector<uint32_t>& trianglePatch) const {
@@ -954,6 +1224,14 @@ RemeshResult Pipeline::run(const MeshBuffers& input) {
         optimizeMesh(p);
         checkCancel(Stage::Refine, 1.0);
       }
+    // curve samples slide along their curves, then the interior around each slid sample gets
+    // another optimization (local: the vertices of its stars first), guarded so that it does not
+    // take the output farther from the input
+    if (opt_.optimize && opt_.optimizeIterations > 0) {
+      const std::vector<std::vector<uint8_t>> slid = slideSamples();
+      for (uint32_t p = 0; p < work_.size(); ++p)
+        if (!slid[p].empty()) optimizeMesh(p, slid[p]);
+    }
     rep_.conformingRounds = std::max(rep_.conformingRounds, round);
     rep_.seconds.refine += elapsed(t0);
     out = stitch(triPatch);

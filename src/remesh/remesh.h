@@ -107,7 +107,7 @@ struct RemeshReport {
   double minAngle = 0, maxAngle = 0, meanMinAngle = 0;  //!< degrees, all triangles
   double pctBelow20 = 0, pctBelow26 = 0, pctBelow30 = 0;
   double pctMinAtLeast40 = 0, pctMinAtLeast50 = 0;  //!< % of triangles whose min angle is >= 40°, >= 50°
-  size_t optimizeMoves = 0, optimizeFlips = 0;       //!< accepted by the optimization
+  size_t optimizeMoves = 0, optimizeFlips = 0;       //!< accepted by the optimization (moves include curve-sample slides)
   double minAngleOutsideExempt = 0;  //!< smallest angle over triangles not touching an exempt corner
   size_t trianglesBelowBoundOutsideExempt = 0;
   std::vector<ExemptCorner> exemptCorners;
