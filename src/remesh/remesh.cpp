@@ -1230,7 +1230,10 @@ RemeshResult Pipeline::run(const MeshBuffers& input) {
     if (opt_.optimize && opt_.optimizeIterations > 0) {
       const std::vector<std::vector<uint8_t>> slid = slideSamples();
       for (uint32_t p = 0; p < work_.size(); ++p)
-        if (!slid[p].empty()) optimizeMesh(p, slid[p]);
+        if (!slid[p].empty()) {
+          optimizeMesh(p, slid[p]);
+          checkCancel(Stage::Refine, 1.0);
+        }
     }
     rep_.conformingRounds = std::max(rep_.conformingRounds, round);
     rep_.seconds.refine += elapsed(t0);
