@@ -508,8 +508,10 @@ OptimizeStats optimizePatch(std::vector<double>& xy, std::vector<uint32_t>& tria
       StarQuality q = starQuality(m, v);
       // candidates, the first accepted wins: the mean of the star's equilateral apexes, the ODT
       // position, the centroid of the neighbours (Laplacian: helps where a big star triangle
-      // pulls the ODT position off), then half steps
-      double cand[6][2];
+      // pulls the ODT position off), then a half step toward the first (four lifts at most, as
+      // many as before it came: half steps toward ODT and centroid gave 0.03 degrees more mean
+      // for a fifth of the optimization time at fandisk 0.004)
+      double cand[4][2];
       int nc = 0;
       double eq[2];
       const bool eqOk = equilateralTarget(m, v, eq);
@@ -520,8 +522,6 @@ OptimizeStats optimizePatch(std::vector<double>& xy, std::vector<uint32_t>& tria
       double l[2] = {x, y};
       const bool lap = neighbourCentroid(m, v, l);
       if (lap) cand[nc][0] = l[0], cand[nc][1] = l[1], ++nc;
-      if (odt) cand[nc][0] = 0.5 * (x + t[0]), cand[nc][1] = 0.5 * (y + t[1]), ++nc;
-      if (lap) cand[nc][0] = 0.5 * (x + l[0]), cand[nc][1] = 0.5 * (y + l[1]), ++nc;
       if (eqOk) cand[nc][0] = 0.5 * (x + eq[0]), cand[nc][1] = 0.5 * (y + eq[1]), ++nc;
       bool moved = false;
       for (int c = 0; c < nc && !moved; ++c) moved = tryMove(m, v, cand[c][0], cand[c][1], lift, o.minAngleDeg, q);
