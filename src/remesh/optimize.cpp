@@ -511,20 +511,14 @@ OptimizeStats optimizePatch(std::vector<double>& xy, std::vector<uint32_t>& tria
       // pulls the ODT position off), then a half step toward the first (four lifts at most, as
       // many as before it came: half steps toward ODT and centroid gave 0.03 degrees more mean
       // for a fifth of the optimization time at fandisk 0.004)
-      double cand[4][2];
-      int nc = 0;
-      double eq[2];
+      // (each computed only when the ones before it were rejected: the first is taken about
+      // half the time)
+      double eq[2], t[2] = {x, y}, l[2] = {x, y};
       const bool eqOk = equilateralTarget(m, v, eq);
-      if (eqOk) cand[nc][0] = eq[0], cand[nc][1] = eq[1], ++nc;
-      double t[2] = {x, y};
-      const bool odt = odtTarget(m, v, t);
-      if (odt) cand[nc][0] = t[0], cand[nc][1] = t[1], ++nc;
-      double l[2] = {x, y};
-      const bool lap = neighbourCentroid(m, v, l);
-      if (lap) cand[nc][0] = l[0], cand[nc][1] = l[1], ++nc;
-      if (eqOk) cand[nc][0] = 0.5 * (x + eq[0]), cand[nc][1] = 0.5 * (y + eq[1]), ++nc;
-      bool moved = false;
-      for (int c = 0; c < nc && !moved; ++c) moved = tryMove(m, v, cand[c][0], cand[c][1], lift, o.minAngleDeg, q);
+      bool moved = eqOk && tryMove(m, v, eq[0], eq[1], lift, o.minAngleDeg, q);
+      if (!moved && odtTarget(m, v, t)) moved = tryMove(m, v, t[0], t[1], lift, o.minAngleDeg, q);
+      if (!moved && neighbourCentroid(m, v, l)) moved = tryMove(m, v, l[0], l[1], lift, o.minAngleDeg, q);
+      if (!moved && eqOk) moved = tryMove(m, v, 0.5 * (x + eq[0]), 0.5 * (y + eq[1]), lift, o.minAngleDeg, q);
       // a star still under the bound: a local search for a better min angle (8 directions, two
       // step lengths relative to the star's shortest edge at v)
       if (q.min < o.minAngleDeg) {
