@@ -124,6 +124,7 @@ val remeshJs(val positions, val triangles, val vertexSizing, val featureEdges, v
     o.featureAngleDeg = bindings::numberOption(options, "featureAngle", o.featureAngleDeg, st, 0, 180);
     o.cornerTurnDeg = bindings::numberOption(options, "cornerTurn", o.cornerTurnDeg, st, 0, 180);
     o.minFeatureLength = bindings::numberOption(options, "minFeatureLength", o.minFeatureLength, st);
+    o.minPatchWidth = bindings::numberOption(options, "minPatchWidth", o.minPatchWidth, st);
     o.maxScaleRatio = bindings::numberOption(options, "maxScaleRatio", o.maxScaleRatio, st, 1);
     o.maxCertificateRounds =
         int(bindings::integerOption(options, "maxCertificateRounds", o.maxCertificateRounds, st, 0, 100));

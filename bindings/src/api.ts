@@ -178,6 +178,7 @@ const remeshKeys: (keyof RemeshOptions)[] = [
   'featureAngle',
   'cornerTurn',
   'minFeatureLength',
+  'minPatchWidth',
   'maxScaleRatio',
   'maxCertificateRounds',
   'optimize',

@@ -183,7 +183,7 @@ const refine2dUsage =
 const flattenUsage =
   'flatten IN -o OUT.obj [--boundary circle|free|corners] [--corner-angle DEG] [--no-flips] [--json]';
 const remeshUsage =
-  'remesh IN -o OUT [--min-angle D] [--edge-length L | --edge-length-rel R] [--feature-angle D] [--min-feature-length L] [--chord-tol T] [--boundary free|corners|circle] [--max-triangles N] [--max-vertices N] [--json] [--no-hausdorff] [--no-optimize] [--optimize-iterations N] [--optimize-tolerance T]';
+  'remesh IN -o OUT [--min-angle D] [--edge-length L | --edge-length-rel R] [--feature-angle D] [--min-feature-length L] [--min-patch-width W] [--chord-tol T] [--boundary free|corners|circle] [--max-triangles N] [--max-vertices N] [--json] [--no-hausdorff] [--no-optimize] [--optimize-iterations N] [--optimize-tolerance T]';
 
 const infoUsage = 'info FILE [--json] [--weld TOL] [--format NAME]';
 
@@ -292,7 +292,7 @@ const commands: Record<string, Command> = {
   remesh: {
     usage: remeshUsage,
     summary: 'remesh a surface: conformal flattening per patch, planar Delaunay refinement, lift',
-    valueFlags: ['-o', '--min-angle', '--edge-length', '--edge-length-rel', '--feature-angle', '--min-feature-length', '--chord-tol', '--max-triangles', '--max-vertices', '--boundary', '--optimize-iterations', '--optimize-tolerance'],
+    valueFlags: ['-o', '--min-angle', '--edge-length', '--edge-length-rel', '--feature-angle', '--min-feature-length', '--min-patch-width', '--chord-tol', '--max-triangles', '--max-vertices', '--boundary', '--optimize-iterations', '--optimize-tolerance'],
     switches: ['--json', '--no-hausdorff', '--no-optimize'],
     async run(args, api) {
       if (args.positional.length !== 1) throw new ConformeshError('InvalidArgument', 'api', 'remesh needs exactly one input file');
@@ -304,6 +304,7 @@ const commands: Record<string, Command> = {
         targetEdgeLengthRel: numberFlag(args, '--edge-length-rel', 0.01),
         featureAngle: numberFlag(args, '--feature-angle', 40),
         minFeatureLength: numberFlag(args, '--min-feature-length', -1),
+        minPatchWidth: numberFlag(args, '--min-patch-width', 0),
         chordTolerance: numberFlag(args, '--chord-tol', -1),
         computeHausdorff: !args.flags.has('--no-hausdorff'),
         optimize: !args.flags.has('--no-optimize'),

@@ -288,6 +288,10 @@ export interface RemeshOptions {
   /** Chains of sharp edges shorter than this in all, none of them at 60° or more, are not
    *  features (absolute; < 0 or absent: twice the target edge length; 0: keep every sharp edge). */
   minFeatureLength?: number;
+  /** Patches narrower than this (2·area / perimeter) are merged into a neighbour, dropping the sharp
+   *  edges between them (absolute; < 0: half the sizing's smallest edge, target/20 by default;
+   *  0 or absent: keep every patch and every sharp edge). */
+  minPatchWidth?: number;
   /** A patch whose scale factor ratio exceeds this is split; default 50. */
   maxScaleRatio?: number;
   /** Cap on the rounds of the 3D angle certificate (they also stop after two rounds in a row without a gain); default 6. */

@@ -92,7 +92,7 @@ int run(const std::vector<std::string>& argv) {
   for (const auto& a : argv) json = json || a == "--json";
   try {
     Args args = parseArgs(argv,
-                          {"-o", "--min-angle", "--edge-length", "--edge-length-rel", "--feature-angle", "--min-feature-length", "--chord-tol",
+                          {"-o", "--min-angle", "--edge-length", "--edge-length-rel", "--feature-angle", "--min-feature-length", "--min-patch-width", "--chord-tol",
                            "--max-triangles", "--max-vertices", "--boundary", "--optimize-iterations", "--optimize-tolerance"},
                           {"--json", "--no-hausdorff", "--no-optimize"});
     if (args.positional.size() != 1) fail(Code::InvalidArgument, Stage::Api, "remesh needs exactly one input file");
@@ -104,6 +104,7 @@ int run(const std::vector<std::string>& argv) {
     opt.targetEdgeLengthRel = args.number("--edge-length-rel", opt.targetEdgeLengthRel);
     opt.featureAngleDeg = args.number("--feature-angle", opt.featureAngleDeg);
     opt.minFeatureLength = args.number("--min-feature-length", opt.minFeatureLength);
+    opt.minPatchWidth = args.number("--min-patch-width", opt.minPatchWidth);
     opt.chordTolerance = args.number("--chord-tol", opt.chordTolerance);
     opt.computeHausdorff = !args.has("--no-hausdorff");
     opt.optimize = !args.has("--no-optimize");
@@ -144,7 +145,7 @@ int run(const std::vector<std::string>& argv) {
 
 const CommandRegistrar registrar({"remesh",
                                   "remesh IN -o OUT [--min-angle D] [--edge-length L | --edge-length-rel R] "
-                                  "[--feature-angle D] [--min-feature-length L] [--chord-tol T] [--boundary free|corners|circle] [--max-triangles N] [--max-vertices N] [--json] "
+                                  "[--feature-angle D] [--min-feature-length L] [--min-patch-width W] [--chord-tol T] [--boundary free|corners|circle] [--max-triangles N] [--max-vertices N] [--json] "
                                   "[--no-hausdorff] [--no-optimize] [--optimize-iterations N] [--optimize-tolerance T]",
                                   "remesh a surface: conformal flattening per patch, planar Delaunay refinement, lift",
                                   run});

@@ -1122,7 +1122,7 @@ RemeshResult Pipeline::run(const MeshBuffers& input) {
   fo.minFeatureLength = opt_.minFeatureLength >= 0 ? opt_.minFeatureLength : kMinFeatureFactor * target;
   // strips narrower than half the smallest edge the sizing allows (its minLength) are merged
   // into a neighbour (features/segmentation.h)
-  fo.minPatchWidth = 0.5 * (opt_.minEdgeLength > 0 ? opt_.minEdgeLength : 0.1 * target);
+  fo.minPatchWidth = opt_.minPatchWidth >= 0 ? opt_.minPatchWidth : 0.5 * (opt_.minEdgeLength > 0 ? opt_.minEdgeLength : 0.1 * target);
   {  // input edges no longer than twice the target, flat pairs Delaunay (mesh/precondition.h),
      // in the patches that need cuts (only there do curves follow input edges that are not
      // features): a first segmentation of the input finds them

@@ -46,6 +46,15 @@ struct RemeshOptions {
   //! < 0: twice the target edge length; 0: keep every sharp edge). User feature edges are always
   //! kept. The report counts the dropped edges.
   double minFeatureLength = -1.0;
+  //! Patches narrower than this (twice their area over their perimeter) are merged into a
+  //! neighbour by dropping the sharp edges between them; the strip's other border keeps the
+  //! feature, within this width (absolute; < 0: half the smallest edge length the sizing allows,
+  //! target/20 by default; 0, the default: keep every patch, so every sharp edge). A strip far
+  //! narrower than the output edges (a CAD chamfer) is otherwise meshed below the sizing's floor,
+  //! with a graded band around it: blade.off at the default target has 46k triangles and a mean
+  //! min angle of 48.6° with every feature kept, 22k and 51.0° with -1 (one chamfer border
+  //! dropped, 0.033 wide at a target of 1.3).
+  double minPatchWidth = 0.0;
   //! User feature edges (input vertex pairs).
   std::vector<std::array<uint32_t, 2>> featureEdges;
   //! The boundary condition each patch's flattening tries first; when its layout fails (overlaps

@@ -186,6 +186,7 @@ describe('package CLI: refine2d, flatten, remesh', () => {
     const none = opt(['--optimize-iterations', '0']), off = opt(['--no-optimize']);
     expect(none.meanMinAngle).toBe(off.meanMinAngle);
     expect(none.optimizeMoves).toBe(0);
+    opt(['--min-patch-width', '-1']);
     const more = opt(['--optimize-iterations', '4', '--optimize-tolerance', '0']);
     expect(more.optimizeMoves).toBeGreaterThanOrEqual(n.optimizeMoves);
     for (const bad of [
