@@ -9,14 +9,6 @@ import { init } from './index.js';
 import { ConformeshError, StatusCode } from './status.js';
 import type { MeshFormat } from './types.js';
 
-// V8 runs new WebAssembly code in its baseline tier and optimizes a function only once it has run
-// a while; it cannot switch a call that is already running (no on-stack replacement for wasm).
-// A remesh spends seconds inside a few long calls, so the first one ran almost all of it in
-// baseline code (fandisk at 0.004: 3.1 s against 1.6 s for the later calls). This process is
-// ours and runs one command: have V8 optimize the whole module in the background from the start
-// (before the module is compiled: init() below).
-setFlagsFromString('--no-wasm-dynamic-tiering');
-
 interface Args {
   positional: string[];
   flags: Map<string, string>;
@@ -485,5 +477,12 @@ export async function main(argv: string[]): Promise<number> {
 // Run when executed as the bin (not when imported by tests).
 const self = process.argv[1] ? await import('node:fs').then((fs) => fs.realpathSync(process.argv[1]!)) : '';
 if (self && import.meta.url === (await import('node:url')).pathToFileURL(self).href) {
+  // V8 runs new WebAssembly code in its baseline tier and optimizes a function only once it has
+  // run a while; it cannot switch a call that is already running (no on-stack replacement for
+  // wasm). A remesh spends seconds inside a few long calls, so the first one ran almost all of
+  // it in baseline code (fandisk at 0.004: 3.1 s against 1.6 s for the later calls). This
+  // process is ours and runs one command: have V8 optimize the whole module in the background
+  // from the start (before main() compiles it). Not done when the file is imported.
+  setFlagsFromString('--no-wasm-dynamic-tiering');
   process.exitCode = await main(process.argv.slice(2));
 }

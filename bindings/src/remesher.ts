@@ -207,7 +207,9 @@ export function createRemesher(options: RemesherOptions = {}): Remesher {
   };
 
   const startWorker = (slot: Slot): Promise<WorkerLike> => {
-    const w = Promise.all([Promise.resolve().then(create), initFor()]).then(([worker, init]) => {
+    // the listeners go on at once (a worker script that fails to load reports it right away);
+    // the init message waits for the shared compiled module
+    const w = Promise.resolve().then(create).then(async (worker) => {
       if (worker.addEventListener) {
         worker.addEventListener('message', (ev) => onMessage(slot, ev.data));
         worker.addEventListener('error', (ev) => onFailure(slot, ev));
@@ -223,6 +225,7 @@ export function createRemesher(options: RemesherOptions = {}): Remesher {
       }
       // load and compile the module now, not inside the first call (keeps a replacement worker's
       // start-up out of the next call after a cancel, and off the main thread's frames then)
+      const init = await initFor();
       worker.postMessage({ id: 0, type: 'init', options: init ?? {} } satisfies WorkerRequest);
       return worker;
     });

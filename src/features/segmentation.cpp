@@ -655,7 +655,8 @@ uint32_t straightenCutEars(const EdgeGraph& g, Segmentation& seg) {
             b = x;
             eb = g.findEdge(v, x);
           }
-          if (eb == kNone || !seg.isCurveEdge(eb) || !(angle < kEar)) continue;
+          // (eb == ea: the walk went all the way round v, a cone of less than kEar)
+          if (eb == kNone || eb == ea || !seg.isCurveEdge(eb) || !(angle < kEar)) continue;
           // the new cut runs along the rim: its edges free, its inner vertices on no curve
           rimEdges.clear();
           bool ok = true;
@@ -666,7 +667,7 @@ uint32_t straightenCutEars(const EdgeGraph& g, Segmentation& seg) {
           }
           const bool cutB = seg.edgeKind[eb] == EdgeKind::Cut;
           // v keeps no curve edge or at least two (a dangling end would be a slit)
-          if (!ok || valence(v) - 1 - uint32_t(cutB) == 1) continue;
+          if (!ok || int(valence(v)) - 1 - int(cutB) == 1) continue;
           const double before = wedgeAround(v, rim);
           seg.edgeKind[ea] = EdgeKind::None;
           if (cutB) seg.edgeKind[eb] = EdgeKind::None;

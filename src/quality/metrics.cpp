@@ -354,8 +354,9 @@ ClosestHit TriangleMeshDistance::closest(const Vec3& p, int64_t hint) const {
   // the hint's distance bounds the search; a triangle strictly closer replaces it, so the
   // distance is the same as without the hint
   const double dh = distSq(uint32_t(hint), p);
+  if (!(dh < std::numeric_limits<double>::infinity())) return tree_.closest(p, distSq);  // NaN or none
   ClosestHit h = tree_.closest(p, distSq, dh);
-  if (h.primitive < 0 && std::isfinite(dh)) h = {hint, dh};
+  if (h.primitive < 0) h = {hint, dh};
   return h;
 }
 

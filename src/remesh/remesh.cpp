@@ -56,6 +56,34 @@ constexpr int kCrossingRepairs = 8;
 // cuts along input edges are not sawtooths of needle edges (mesh/precondition.h).
 constexpr double kPreconditionEdgeFactor = 2.0;
 
+// Remove the vertices from index `keep` on that no triangle uses (a required point that a later
+// boundary split left outside the domain, or one inserted twice), renumbering the rest: every
+// vertex of a patch's meshing becomes an output vertex.
+void dropUnusedPoints(planar::PlanarMesh& m, size_t keep) {
+  const size_t nv = m.vertexCount();
+  std::vector<uint32_t> id(nv, kNone);
+  for (uint32_t v : m.triangles) id[v] = 0;
+  size_t next = 0;
+  bool any = false;
+  for (size_t v = 0; v < nv; ++v) {
+    if (v < keep || id[v] == 0) id[v] = uint32_t(next++);
+    else any = true;
+  }
+  if (!any) return;
+  for (size_t v = 0; v < nv; ++v) {
+    if (id[v] == kNone) continue;
+    m.points[2 * id[v]] = m.points[2 * v];
+    m.points[2 * id[v] + 1] = m.points[2 * v + 1];
+    m.vertexSegment[id[v]] = m.vertexSegment[v];
+    m.vertexParam[id[v]] = m.vertexParam[v];
+  }
+  m.points.resize(2 * next);
+  m.vertexSegment.resize(next);
+  m.vertexParam.resize(next);
+  for (uint32_t& v : m.triangles) v = id[v];
+  for (uint32_t& v : m.edges) v = id[v];
+}
+
 double elapsed(std::chrono::steady_clock::time_point& t) {
   auto now = std::chrono::steady_clock::now();
   double s = std::chrono::duration<double>(now - t).count();
@@ -655,6 +683,7 @@ void Pipeline::meshPatch(uint32_t p, bool splitSegments) {
     pslg.points.insert(pslg.points.end(), w.requiredPoints.begin(), w.requiredPoints.end());
   }
   if (!rr.status.ok()) fail(rr.status.code, Stage::Refine, "patch " + std::to_string(p) + ": " + rr.status.message);
+  dropUnusedPoints(rr.mesh, bp.size());
   const auto& pmsh = rr.mesh;
   auto tl = std::chrono::steady_clock::now();
   const size_t nv = pmsh.vertexCount();
