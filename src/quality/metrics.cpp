@@ -1,6 +1,4 @@
 #include "quality/metrics.h"
-
-#include "mesh/edge_groups.h"
 #include "core/detmath.h"
 
 #include <algorithm>
@@ -51,26 +49,38 @@ struct EdgeRef {
   uint8_t corner;  // local index of the opposite corner in `face`
 };
 
-//! Every face side as an EdgeRef, ordered by (a, b, face): the corners grouped by undirected
-//! edge (detail::groupEdges: by smaller vertex, larger vertex, then corner). Triangles with an
-//! index out of range and sides with equal ends are left out.
+//! Every face side as an EdgeRef, ordered by (a, b, face): a counting sort on `a` (O(n)), then a
+//! sort inside each vertex's bucket, which holds about its degree of entries.
 std::vector<EdgeRef> sortedEdgeRefs(const MeshBuffers& m) {
-  std::vector<EdgeRef> refs;
   const size_t nv = m.vertexCount();
-  if (nv == 0) return refs;
-  // an invalid triangle takes part as (0, 0, 0): its sides have equal ends and are skipped
-  std::vector<uint32_t> tris = m.triangles;
-  for (size_t f = 0; f < m.triangleCount(); ++f)
-    if (!triangleValid(m, f)) tris[3 * f] = tris[3 * f + 1] = tris[3 * f + 2] = 0;
-  const detail::EdgeGroups groups = detail::groupEdges(nv, tris);
-  refs.reserve(tris.size());
-  for (size_t gi = 0; gi < groups.groupCount(); ++gi)
-    for (uint32_t k = groups.groupStart[gi]; k < groups.groupStart[gi + 1]; ++k) {
-      const uint32_t c = groups.corners[k], a = tris[c], b = detail::cornerTip(tris, c);
-      if (a == b) continue;
-      // corner c = 3f + i is the side from vertex i to vertex i + 1: vertex i + 2 is opposite
-      refs.push_back({std::min(a, b), std::max(a, b), c / 3, uint8_t((c % 3 + 2) % 3)});
+  std::vector<uint32_t> start(nv + 1, 0);
+  auto forEachSide = [&](auto&& visit) {
+    for (size_t f = 0; f < m.triangleCount(); ++f) {
+      if (!triangleValid(m, f)) continue;
+      const uint32_t* t = &m.triangles[3 * f];
+      for (int k = 0; k < 3; ++k) {
+        uint32_t a = t[(k + 1) % 3], b = t[(k + 2) % 3];
+        if (a != b) visit(EdgeRef{std::min(a, b), std::max(a, b), uint32_t(f), uint8_t(k)});
+      }
     }
+  };
+  forEachSide([&](const EdgeRef& r) { ++start[r.a + 1]; });
+  for (size_t v = 0; v < nv; ++v) start[v + 1] += start[v];
+  std::vector<EdgeRef> refs(start[nv]);
+  std::vector<uint32_t> fill(start.begin(), start.end() - 1);
+  forEachSide([&](const EdgeRef& r) { refs[fill[r.a]++] = r; });
+  // faces arrive in increasing order, so within a bucket ordering by b alone (stably) is enough
+  auto byB = [](const EdgeRef& x, const EdgeRef& y) { return x.b < y.b; };
+  for (size_t v = 0; v < nv; ++v) {
+    EdgeRef* lo = refs.data() + start[v];
+    EdgeRef* hi = refs.data() + start[v + 1];
+    if (hi - lo <= 24) {
+      for (EdgeRef* i = lo + 1; i < hi; ++i)  // insertion sort: stable, fast on short buckets
+        for (EdgeRef* j = i; j > lo && byB(*j, *(j - 1)); --j) std::swap(*j, *(j - 1));
+    } else {
+      std::stable_sort(lo, hi, byB);
+    }
+  }
   return refs;
 }
 
