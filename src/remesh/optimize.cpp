@@ -3,7 +3,6 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
-#include <unordered_map>
 
 #include "planar/predicates.h"
 #include "quality/aabb_tree.h"
@@ -71,6 +70,7 @@ struct Mesh {
   std::vector<Vec3>& pos;
   const std::vector<uint8_t>& fixed;
   std::vector<uint32_t> starStart, starTri;  // CSR vertex -> triangles
+  std::vector<uint32_t> adj;                 // triangle adjacency (see buildAdjacency)
   std::vector<double> minAngle;              // cached 3D min angle per triangle (degrees)
   // the guard (SurfaceSamples): per triangle a list (head, next) of the points whose planar
   // position it contains, and the largest squared 3D distance from them to the triangle
@@ -375,97 +375,87 @@ bool guardAcceptsFlip(Mesh& m, uint32_t t0, uint32_t t1, uint32_t c0, uint32_t x
   return ok;
 }
 
+// Triangle adjacency: adj[3t + c] is the triangle across t's edge (v[c], v[c+1]), kNoTri on the
+// boundary. Built from the stars once per patch; flipPass keeps it current.
+void buildAdjacency(Mesh& m) {
+  const size_t nt = m.tri.size() / 3;
+  m.adj.assign(3 * nt, kNoTri);
+  for (size_t t = 0; t < nt; ++t)
+    for (int c = 0; c < 3; ++c) {
+      const uint32_t a = m.tri[3 * t + c], b = m.tri[3 * t + (c + 1) % 3];
+      for (uint32_t i = m.starStart[a]; i < m.starStart[a + 1]; ++i) {
+        const uint32_t u = m.starTri[i];
+        if (u == t) continue;
+        const uint32_t* w = &m.tri[3 * size_t(u)];
+        if (w[0] == b || w[1] == b || w[2] == b) {
+          m.adj[3 * t + c] = u;
+          break;
+        }
+      }
+    }
+}
+
+// In triangle t, the adjacency slot that names `from` now names `to` (no-op for kNoTri).
+inline void relink(Mesh& m, uint32_t t, uint32_t from, uint32_t to) {
+  if (t == kNoTri) return;
+  for (int c = 0; c < 3; ++c)
+    if (m.adj[3 * size_t(t) + c] == from) {
+      m.adj[3 * size_t(t) + c] = to;
+      return;
+    }
+}
+
 // One pass of flips: an interior edge flips when its quad is strictly convex in the plane and
 // the smaller 3D min angle of its two triangles gets larger. Returns the number of flips.
-// Pre: m's stars are current (built after the last change of m.tri).
+// Edges are visited by triangle (each from its triangle of smaller index), only those with an
+// end in `region`: an edge whose quad did not change since the last pass refused it would
+// refuse it again. Pre: m.adj is current.
 size_t flipPass(Mesh& m, std::vector<uint8_t>& touched, const std::vector<uint8_t>& region) {
-  auto key = [](uint32_t a, uint32_t b) { return (uint64_t(std::min(a, b)) << 32) | std::max(a, b); };
-  const uint32_t nt = uint32_t(m.tri.size() / 3), nv = uint32_t(m.xy.size() / 2);
-  // The triangles of an edge, first the one of smaller index, are found in the (pass-start)
-  // star of its smaller vertex; flips change those of four edges each, which are kept in
-  // `changed` from then on (an edge flipped away keeps an entry with no triangles).
-  std::unordered_map<uint64_t, std::array<uint32_t, 2>> changed;
-  auto edgeAt = [&](uint64_t k) {
-    if (const auto it = changed.find(k); it != changed.end()) return it->second;
-    std::array<uint32_t, 2> e{kNoTri, kNoTri};
-    const uint32_t a = uint32_t(k >> 32), b = uint32_t(k & 0xffffffffu);
-    for (uint32_t i = m.starStart[a]; i < m.starStart[a + 1]; ++i) {
-      const uint32_t t = m.starTri[i], *v = &m.tri[3 * size_t(t)];
-      if ((v[0] == a || v[1] == a || v[2] == a) && (v[0] == b || v[1] == b || v[2] == b)) (e[0] == kNoTri ? e[0] : e[1]) = t;
-    }
-    return e;
-  };
-  // The interior edges in increasing key order (deterministic), from the stars: (a, b), a < b,
-  // is interior when b is in two triangles of a's star. Only edges with an end in `region`: an
-  // edge whose quad did not change since the last pass refused it would refuse it again.
-  std::vector<uint64_t> edges;
-  edges.reserve(3 * size_t(nt) / 2 + 1);
-  std::vector<uint32_t> nb;
-  for (uint32_t a = 0; a < nv; ++a) {
-    nb.clear();
-    for (uint32_t k = m.starStart[a]; k < m.starStart[a + 1]; ++k)
-      for (int c = 0; c < 3; ++c)
-        if (const uint32_t b = m.tri[3 * size_t(m.starTri[k]) + c]; b > a && (region[a] || region[b])) nb.push_back(b);
-    std::sort(nb.begin(), nb.end());
-    for (size_t i = 0; i + 1 < nb.size(); ++i)
-      if (nb[i] == nb[i + 1]) {
-        edges.push_back(key(a, nb[i]));
-        while (i + 1 < nb.size() && nb[i + 1] == nb[i]) ++i;
-      }
-  }
+  const uint32_t nt = uint32_t(m.tri.size() / 3);
   size_t flips = 0;
-  for (uint64_t k : edges) {
-    const std::array<uint32_t, 2> e01 = edgeAt(k);
-    if (e01[1] == kNoTri) continue;  // flipped away earlier in this pass
-    const uint32_t t0 = e01[0], t1 = e01[1];
-    const uint32_t a = uint32_t(k >> 32), b = uint32_t(k & 0xffffffffu);
-    auto opposite = [&](uint32_t t) {
-      for (int c = 0; c < 3; ++c)
-        if (m.tri[3 * t + c] != a && m.tri[3 * t + c] != b) return m.tri[3 * t + c];
-      return kNoTri;
-    };
-    const uint32_t c0 = opposite(t0), c1 = opposite(t1);
-    if (c0 == kNoTri || c1 == kNoTri || c0 == c1) continue;
-    // orient so that t0 = (x, y, c0) counter-clockwise with edge x -> y
-    uint32_t x = a, y = b;
-    for (int c = 0; c < 3; ++c)
-      if (m.tri[3 * t0 + c] == a && m.tri[3 * t0 + (c + 1) % 3] == b) x = a, y = b;
-      else if (m.tri[3 * t0 + c] == b && m.tri[3 * t0 + (c + 1) % 3] == a) x = b, y = a;
-    // new triangles (c0, x, c1) and (c1, y, c0). Most edges do not flip: the approximate angles
-    // are sure of that for nearly all, so they are asked first, and atan2 only where they are not
-    const double before = std::min(m.minAngle[t0], m.minAngle[t1]);
-    const Corner k0 = smallestCorner(m.pos[c0], m.pos[x], m.pos[c1]);
-    if (cornerDegApprox(k0) + kApproxErrDeg <= before + 1e-6) continue;
-    const Corner k1 = smallestCorner(m.pos[c1], m.pos[y], m.pos[c0]);
-    if (cornerDegApprox(k1) + kApproxErrDeg <= before + 1e-6) continue;
-    // both must be strictly positive in the plane
-    const double l2 = sq(m.p(c0)[0] - m.p(c1)[0]) + sq(m.p(c0)[1] - m.p(c1)[1]);
-    if (!(orient2d(m.p(c0), m.p(x), m.p(c1)) > 1e-6 * l2) || !(orient2d(m.p(c1), m.p(y), m.p(c0)) > 1e-6 * l2)) continue;
-    const double n0 = cornerDeg(k0), n1 = cornerDeg(k1);
-    if (!(std::min(n0, n1) > before + 1e-6) || !guardAcceptsFlip(m, t0, t1, c0, x, c1, y)) continue;
-    m.minAngle[t0] = n0;
-    m.minAngle[t1] = n1;
-    // the edges (x, c1) of t1 and (y, c0) of t0 change sides (read before the triangles change)
-    auto swapTri = [&](uint32_t u, uint32_t w, uint32_t from, uint32_t to) {
-      std::array<uint32_t, 2> e = edgeAt(key(u, w));
-      for (auto& f : e)
-        if (f == from) f = to;
-      return e;
-    };
-    const std::array<uint32_t, 2> xc1 = swapTri(x, c1, t1, t0), yc0 = swapTri(y, c0, t0, t1);
-    m.tri[3 * size_t(t0)] = c0, m.tri[3 * size_t(t0) + 1] = x, m.tri[3 * size_t(t0) + 2] = c1;
-    m.tri[3 * size_t(t1)] = c1, m.tri[3 * size_t(t1) + 1] = y, m.tri[3 * size_t(t1) + 2] = c0;
-    changed[k] = {kNoTri, kNoTri};  // flipped away
-    changed[key(c0, c1)] = {t0, t1};
-    changed[key(x, c1)] = xc1;
-    changed[key(y, c0)] = yc0;
-    touched[x] = touched[y] = touched[c0] = touched[c1] = 1;
-    {
-      const uint32_t ts[2] = {t0, t1};
-      rebucket(m, ts, 2);
+  for (uint32_t t0 = 0; t0 < nt; ++t0)
+    for (int c = 0; c < 3; ++c) {
+      uint32_t* v0 = &m.tri[3 * size_t(t0)];
+      const uint32_t t1 = m.adj[3 * size_t(t0) + c];
+      const uint32_t x = v0[c], y = v0[(c + 1) % 3], c0 = v0[(c + 2) % 3];
+      if (t1 == kNoTri || t1 < t0 || !(region[x] || region[y])) continue;
+      // t0 = (x, y, c0) counter-clockwise; t1 holds the edge as y -> x
+      uint32_t* v1 = &m.tri[3 * size_t(t1)];
+      const int d = v1[0] == y ? 0 : v1[1] == y ? 1 : 2;  // v1[d] = y, v1[d+1] = x
+      if (v1[(d + 1) % 3] != x) continue;                  // not a consistently oriented pair
+      const uint32_t c1 = v1[(d + 2) % 3];
+      if (c0 == c1) continue;
+      // new triangles (c0, x, c1) and (c1, y, c0). Most edges do not flip: the approximate
+      // angles are sure of that for nearly all, so they are asked first, and atan2 only where
+      // they are not
+      const double before = std::min(m.minAngle[t0], m.minAngle[t1]);
+      const Corner k0 = smallestCorner(m.pos[c0], m.pos[x], m.pos[c1]);
+      if (cornerDegApprox(k0) + kApproxErrDeg <= before + 1e-6) continue;
+      const Corner k1 = smallestCorner(m.pos[c1], m.pos[y], m.pos[c0]);
+      if (cornerDegApprox(k1) + kApproxErrDeg <= before + 1e-6) continue;
+      // both must be strictly positive in the plane
+      const double l2 = sq(m.p(c0)[0] - m.p(c1)[0]) + sq(m.p(c0)[1] - m.p(c1)[1]);
+      if (!(orient2d(m.p(c0), m.p(x), m.p(c1)) > 1e-6 * l2) || !(orient2d(m.p(c1), m.p(y), m.p(c0)) > 1e-6 * l2)) continue;
+      const double n0 = cornerDeg(k0), n1 = cornerDeg(k1);
+      if (!(std::min(n0, n1) > before + 1e-6) || !guardAcceptsFlip(m, t0, t1, c0, x, c1, y)) continue;
+      // the quad's outer neighbours: (y, c0) and (c0, x) of t0, (x, c1) and (c1, y) of t1
+      const uint32_t nYC0 = m.adj[3 * size_t(t0) + (c + 1) % 3], nC0X = m.adj[3 * size_t(t0) + (c + 2) % 3];
+      const uint32_t nXC1 = m.adj[3 * size_t(t1) + (d + 1) % 3], nC1Y = m.adj[3 * size_t(t1) + (d + 2) % 3];
+      m.minAngle[t0] = n0;
+      m.minAngle[t1] = n1;
+      v0[0] = c0, v0[1] = x, v0[2] = c1;
+      v1[0] = c1, v1[1] = y, v1[2] = c0;
+      m.adj[3 * size_t(t0)] = nC0X, m.adj[3 * size_t(t0) + 1] = nXC1, m.adj[3 * size_t(t0) + 2] = t1;
+      m.adj[3 * size_t(t1)] = nC1Y, m.adj[3 * size_t(t1) + 1] = nYC0, m.adj[3 * size_t(t1) + 2] = t0;
+      relink(m, nXC1, t1, t0);
+      relink(m, nYC0, t0, t1);
+      touched[x] = touched[y] = touched[c0] = touched[c1] = 1;
+      {
+        const uint32_t ts[2] = {t0, t1};
+        rebucket(m, ts, 2);
+      }
+      ++flips;
     }
-    ++flips;
-  }
   return flips;
 }
 
@@ -486,7 +476,7 @@ double minAngleDeg3Approx(const Vec3& a, const Vec3& b, const Vec3& c) { return 
 OptimizeStats optimizePatch(std::vector<double>& xy, std::vector<uint32_t>& triangles, std::vector<Vec3>& pos,
                             const std::vector<uint8_t>& fixed, const LiftFn& lift, const OptimizeOptions& o,
                             const std::vector<uint8_t>& active0, const SurfaceSamples& guard) {
-  Mesh m{xy, triangles, pos, fixed, {}, {}, {}, nullptr, {}, {}, {}};
+  Mesh m{xy, triangles, pos, fixed, {}, {}, {}, {}, nullptr, {}, {}, {}};
   OptimizeStats st;
   m.cacheAll();
   if (!guard.pos.empty()) {
@@ -499,8 +489,11 @@ OptimizeStats optimizePatch(std::vector<double>& xy, std::vector<uint32_t>& tria
   // active set: a vertex is visited while it or a neighbour moved (or a flip touched its star)
   // in the previous pass
   std::vector<uint8_t> active = active0.size() == nv ? active0 : std::vector<uint8_t>(nv, 1), nextActive(nv, 0), changed(nv, 0);
+  m.buildStars();
+  buildAdjacency(m);
+  size_t flips = 0;
   for (int it = 0; it < o.maxIterations; ++it) {
-    m.buildStars();
+    if (flips > 0) m.buildStars();  // moves keep the connectivity; flips change it
     std::fill(nextActive.begin(), nextActive.end(), 0);
     for (uint32_t v = 0; v < nv; ++v) {
       if (fixed[v] || !active[v] || m.starStart[v] == m.starStart[v + 1]) continue;
@@ -541,7 +534,7 @@ OptimizeStats optimizePatch(std::vector<double>& xy, std::vector<uint32_t>& tria
         for (int c = 0; c < 3; ++c) nextActive[m.tri[3 * size_t(m.starTri[k]) + c]] = 1;
     }
     for (size_t v = 0; v < nv; ++v) changed[v] = active[v] | nextActive[v];
-    const size_t flips = flipPass(m, nextActive, changed);
+    flips = flipPass(m, nextActive, changed);
     st.flips += flips;
     active.swap(nextActive);
     st.iterations = it + 1;
