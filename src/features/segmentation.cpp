@@ -300,13 +300,31 @@ uint32_t mergeNarrowPatches(const EdgeGraph& g, Segmentation& seg, double minWid
   return merged;
 }
 
+// A cut meeting a curve at a wedge narrower than this makes a corner no mesh can fix (cuts are
+// ours, not features, so such a corner is not exempt); straightenCutEars and the walks of
+// extendDanglingCurves avoid them.
+constexpr double kNarrowCutWedge = 45.0 * kPi / 180.0;
+
+}  // namespace
+
 // Continue every dangling feature curve (a vertex with exactly one curve edge) along the
-// straightest path of input edges until it meets a curve, so no patch contains a slit.
+// straightest path of input edges until it meets a curve, so no patch contains a slit. A step
+// onto a curve vertex that would make a wedge narrower than kNarrowCutWedge there (and narrower
+// than the vertex had) is taken only when no other step is left: on a fan of needle faces the
+// straightest edge can reach a curve's dangling end right beside its last edge (camelhead: a
+// 0.81 degree hairpin, meshed down to 1e-9 of the diagonal).
 void extendDanglingCurves(const EdgeGraph& g, Segmentation& seg) {
   std::vector<uint32_t> valence(g.vertexCount, 0);
   for (uint32_t e = 0; e < g.edgeCount(); ++e)
     if (seg.isCurveEdge(e)) ++valence[g.edgeVerts[e][0]], ++valence[g.edgeVerts[e][1]];
   std::vector<uint32_t> visitedStamp(g.vertexCount, kNone);
+  WedgeScratch scratch;
+  // would stepping along e onto the curve vertex w make a narrow wedge there?
+  auto narrowArrival = [&](uint32_t e, uint32_t w) {
+    const double before = smallestWedge(g, w, [&](uint32_t x) { return seg.isCurveEdge(x); }, scratch);
+    const double after = smallestWedge(g, w, [&](uint32_t x) { return x == e || seg.isCurveEdge(x); }, scratch);
+    return after < kNarrowCutWedge && after < before;
+  };
   for (uint32_t v0 = 0; v0 < g.vertexCount; ++v0) {
     if (valence[v0] != 1) continue;
     uint32_t ein = kNone;
@@ -316,8 +334,8 @@ void extendDanglingCurves(const EdgeGraph& g, Segmentation& seg) {
     visitedStamp[cur] = v0;
     for (uint32_t step = 0; step < g.vertexCount; ++step) {
       Vec3 dir = g.positions[cur] - g.positions[prev];
-      double best = -INFINITY;
-      uint32_t be = kNone;
+      double best = -INFINITY, bestNarrow = -INFINITY;
+      uint32_t be = kNone, beNarrow = kNone;
       for (uint32_t k = g.vertexEdgeStart[cur]; k < g.vertexEdgeStart[cur + 1]; ++k) {
         uint32_t e = g.vertexEdgeIds[k];
         if (seg.isCurveEdge(e)) continue;
@@ -326,8 +344,13 @@ void extendDanglingCurves(const EdgeGraph& g, Segmentation& seg) {
         Vec3 d = g.positions[w] - g.positions[cur];
         double nd = norm(d) * norm(dir);
         double c = nd > 0 ? dot(d, dir) / nd : -1.0;
-        if (c > best) best = c, be = e;
+        if (c > best && valence[w] == 1 && narrowArrival(e, w)) {
+          if (c > bestNarrow) bestNarrow = c, beNarrow = e;
+        } else if (c > best) {
+          best = c, be = e;
+        }
       }
+      if (be == kNone) be = beNarrow;
       if (be == kNone) break;
       uint32_t w = g.otherVertex(be, cur);
       seg.edgeKind[be] = EdgeKind::Cut;
@@ -342,8 +365,6 @@ void extendDanglingCurves(const EdgeGraph& g, Segmentation& seg) {
     }
   }
 }
-
-}  // namespace
 
 std::vector<uint8_t> Segmentation::curveMask() const {
   std::vector<uint8_t> m(edgeKind.size());
@@ -609,7 +630,7 @@ uint32_t improveCutJunctions(const EdgeGraph& g, Segmentation& seg, double scale
 }
 
 uint32_t straightenCutEars(const EdgeGraph& g, Segmentation& seg) {
-  const double kEar = 45.0 * kPi / 180.0;  // wedges below this are candidates
+  const double kEar = kNarrowCutWedge;  // wedges below this are candidates
   const double kGain = 1.0 * kPi / 180.0;  // a move must raise the smallest wedge by this much
   constexpr int kPasses = 8;
   constexpr size_t kMaxFan = 64;  // faces in one wedge (needle fans)

@@ -108,6 +108,12 @@ uint32_t improveCutJunctions(const EdgeGraph& g, Segmentation& seg, double scale
 //! cannot refine it away. Returns the number of moves.
 uint32_t straightenCutEars(const EdgeGraph& g, Segmentation& seg);
 
+//! Continue every dangling feature curve (a vertex with exactly one curve edge) along the
+//! straightest path of input edges until it meets a curve, so no patch contains a slit. A step
+//! onto another curve's dangling end that would make a wedge below 45° there is taken only when
+//! no other step is left. Marks the new edges Cut; the caller rebuilds the curves.
+void extendDanglingCurves(const EdgeGraph& g, Segmentation& seg);
+
 //! Recompute curves, corners and patches from seg.edgeKind (after edges were marked).
 void rebuildCurves(const EdgeGraph& g, Segmentation& seg);
 

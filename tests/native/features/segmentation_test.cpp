@@ -356,3 +356,41 @@ TEST_CASE("features: straightenCutEars moves a cut across a one-face wedge below
   rebuildCurves(g, square);
   CHECK(straightenCutEars(g, square) == 0);
 }
+
+TEST_CASE("features: extendDanglingCurves does not end a walk on another curve's dangling end beside its last edge") {
+  // the grid of [0, 2] x [0, 1] flipped upside down (diagonals of slope -1/2; faces of 26.6,
+  // 63.4 and 90 degrees). Two feature chains with a dangling end each: D = (0.5, 0.75), whose
+  // straightest continuation is the diagonal to W = (1, 0.5), and W, the end of a chain from the
+  // left side along y = 0.5. D is walked first (smaller index); the step D -> W would make a
+  // wedge of 26.6 degrees at W between the walk and W's last edge, a corner no mesh can fix.
+  MeshBuffers m = testshapes::square(4);
+  for (size_t v = 0; v < m.vertexCount(); ++v) m.positions[3 * v] *= 2, m.positions[3 * v + 1] = 1 - m.positions[3 * v + 1];
+  for (size_t t = 0; t < m.triangleCount(); ++t) std::swap(m.triangles[3 * t + 1], m.triangles[3 * t + 2]);
+  EdgeGraph g = buildEdgeGraph(m);
+  auto at = [&](double x, double y) {
+    for (uint32_t v = 0; v < g.vertexCount; ++v)
+      if (std::abs(g.positions[v].x - x) < 1e-12 && std::abs(g.positions[v].y - y) < 1e-12) return v;
+    return kNone;
+  };
+  auto edge = [&](std::array<double, 2> p, std::array<double, 2> q) { return g.findEdge(at(p[0], p[1]), at(q[0], q[1])); };
+  const uint32_t D = at(0.5, 0.75), W = at(1, 0.5);
+  REQUIRE(D < W);
+  REQUIRE(edge({0.5, 0.75}, {1, 0.5}) != kNone);  // the diagonal the walk from D would take
+  Segmentation s = segment(g, FeatureOptions{});
+  REQUIRE(s.patches.size() == 1);
+  for (uint32_t e : {edge({0, 1}, {0.5, 0.75}), edge({0, 0.5}, {0.5, 0.5}), edge({0.5, 0.5}, {1, 0.5})}) {
+    REQUIRE(e != kNone);
+    s.edgeKind[e] = EdgeKind::Feature;
+  }
+  extendDanglingCurves(g, s);
+  CHECK(s.edgeKind[edge({0.5, 0.75}, {1, 0.5})] == EdgeKind::None);
+  // W continues straight on, D's walk took another way; no dangling end is left
+  CHECK(s.edgeKind[edge({1, 0.5}, {1.5, 0.5})] == EdgeKind::Cut);
+  for (uint32_t v = 0; v < g.vertexCount; ++v) {
+    int valence = 0;
+    for (uint32_t k = g.vertexEdgeStart[v]; k < g.vertexEdgeStart[v + 1]; ++k) valence += s.isCurveEdge(g.vertexEdgeIds[k]);
+    CHECK_MESSAGE(valence != 1, "vertex ", v, " is a dangling end");
+  }
+  rebuildCurves(g, s);
+  checkPatchesAreDisks(g, s);
+}
