@@ -634,6 +634,7 @@ uint32_t straightenCutEars(const EdgeGraph& g, Segmentation& seg) {
   const double kGain = 1.0 * kPi / 180.0;  // a move must raise the smallest wedge by this much
   constexpr int kPasses = 8;
   constexpr size_t kMaxFan = 64;  // faces in one wedge (needle fans)
+  constexpr size_t kMaxPrune = 4096;  // edges one move may change, pruned branches included
   const std::vector<EdgeKind> original = seg.edgeKind;
   WedgeScratch scratch;
   auto isCurve = [&](uint32_t e) { return seg.isCurveEdge(e); };
@@ -647,7 +648,28 @@ uint32_t straightenCutEars(const EdgeGraph& g, Segmentation& seg) {
     for (uint32_t k = g.vertexEdgeStart[x]; k < g.vertexEdgeStart[x + 1]; ++k) n += seg.isCurveEdge(g.vertexEdgeIds[k]);
     return n;
   };
-  std::vector<uint32_t> rim, rimEdges;
+  auto onlyCuts = [&](uint32_t x) {
+    for (uint32_t k = g.vertexEdgeStart[x]; k < g.vertexEdgeStart[x + 1]; ++k) {
+      const EdgeKind kd = seg.edgeKind[g.vertexEdgeIds[k]];
+      if (kd == EdgeKind::Feature || kd == EdgeKind::Boundary) return false;
+    }
+    return true;
+  };
+  // after rebuildCurves: the patches of the faces beside the edges es are disks
+  std::vector<uint32_t> touched;
+  auto touchedPatchesAreDisks = [&](const std::vector<uint32_t>& es) {
+    touched.clear();
+    for (uint32_t e : es)
+      for (uint32_t f : g.edgeFaces[e])
+        if (f != kNone) touched.push_back(seg.facePatch[f]);
+    std::sort(touched.begin(), touched.end());
+    touched.erase(std::unique(touched.begin(), touched.end()), touched.end());
+    const std::vector<uint8_t> mask = seg.curveMask();
+    for (uint32_t p : touched)
+      if (!extractPatch(g, mask, seg.patches[p], false).isDisk()) return false;
+    return true;
+  };
+  std::vector<uint32_t> rim, rimEdges, toggled;
   uint32_t total = 0;
   for (int pass = 0; pass < kPasses; ++pass) {
     uint32_t moved = 0;
@@ -678,27 +700,67 @@ uint32_t straightenCutEars(const EdgeGraph& g, Segmentation& seg) {
           }
           // (eb == ea: the walk went all the way round v, a cone of less than kEar)
           if (eb == kNone || eb == ea || !seg.isCurveEdge(eb) || !(angle < kEar)) continue;
-          // the new cut runs along the rim: its edges free, its inner vertices on no curve
+          // the cut moves across the wedge's faces: every edge of their border toggles (the
+          // edges at v stop being cuts; rim edges become cuts, or stop being cuts where the
+          // rim already ran along one). No feature or boundary edge on the rim or at its inner
+          // vertices.
           rimEdges.clear();
-          bool ok = true;
+          bool ok = true, oldCutOnRim = false;
           for (size_t i = 0; i + 1 < rim.size() && ok; ++i) {
             const uint32_t e = g.findEdge(rim[i], rim[i + 1]);
-            ok = e != kNone && !seg.isCurveEdge(e) && (i == 0 || valence(rim[i]) == 0);
+            ok = e != kNone && (seg.edgeKind[e] == EdgeKind::None || seg.edgeKind[e] == EdgeKind::Cut) &&
+                 (i == 0 || onlyCuts(rim[i]));
+            oldCutOnRim = oldCutOnRim || (ok && seg.edgeKind[e] == EdgeKind::Cut);
             rimEdges.push_back(e);
           }
           const bool cutB = seg.edgeKind[eb] == EdgeKind::Cut;
           // v keeps no curve edge or at least two (a dangling end would be a slit)
           if (!ok || int(valence(v)) - 1 - int(cutB) == 1) continue;
           const double before = wedgeAround(v, rim);
-          seg.edgeKind[ea] = EdgeKind::None;
-          if (cutB) seg.edgeKind[eb] = EdgeKind::None;
-          for (uint32_t e : rimEdges) seg.edgeKind[e] = EdgeKind::Cut;
-          if (wedgeAround(v, rim) > before + kGain) {
+          toggled.clear();
+          auto toggle = [&](uint32_t e) {
+            seg.edgeKind[e] = seg.edgeKind[e] == EdgeKind::Cut ? EdgeKind::None : EdgeKind::Cut;
+            toggled.push_back(e);
+          };
+          toggle(ea);
+          if (cutB) toggle(eb);
+          for (uint32_t e : rimEdges) toggle(e);
+          // a rim vertex left with one cut edge ends a branch that no longer separates
+          // anything: the branch goes, back to where it meets other curves. A branch that would
+          // leave a feature's end dangling keeps the old cut.
+          for (uint32_t x : rim) {
+            while (ok && valence(x) == 1) {
+              uint32_t only = kNone;
+              for (uint32_t k = g.vertexEdgeStart[x]; k < g.vertexEdgeStart[x + 1]; ++k)
+                if (seg.isCurveEdge(g.vertexEdgeIds[k])) only = g.vertexEdgeIds[k];
+              if (seg.edgeKind[only] != EdgeKind::Cut || toggled.size() > kMaxPrune) {
+                ok = false;
+                break;
+              }
+              toggle(only);
+              x = g.otherVertex(only, x);
+            }
+          }
+          ok = ok && wedgeAround(v, rim) > before + kGain;
+          // a move that took an old cut off the rim or pruned a branch regroups faces of more
+          // than two patches: it is kept only when every patch it touches stays a disk
+          // (checked at once, so that one such move cannot undo all the others at the end)
+          const bool regroups = oldCutOnRim || toggled.size() > size_t(1 + int(cutB)) + rimEdges.size();
+          if (ok && regroups) {
+            rebuildCurves(g, seg);
+            ok = touchedPatchesAreDisks(toggled);
+            if (!ok) {
+              for (auto it = toggled.rbegin(); it != toggled.rend(); ++it)
+                seg.edgeKind[*it] = seg.edgeKind[*it] == EdgeKind::Cut ? EdgeKind::None : EdgeKind::Cut;
+              rebuildCurves(g, seg);
+              continue;
+            }
+          }
+          if (ok) {
             ++moved;
           } else {
-            seg.edgeKind[ea] = EdgeKind::Cut;
-            if (cutB) seg.edgeKind[eb] = EdgeKind::Cut;
-            for (uint32_t e : rimEdges) seg.edgeKind[e] = EdgeKind::None;
+            for (auto it = toggled.rbegin(); it != toggled.rend(); ++it)
+              seg.edgeKind[*it] = seg.edgeKind[*it] == EdgeKind::Cut ? EdgeKind::None : EdgeKind::Cut;
           }
         }
     if (moved == 0) break;

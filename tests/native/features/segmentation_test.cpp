@@ -29,6 +29,18 @@ void checkPatchesAreDisks(const EdgeGraph& g, const Segmentation& s) {
   }
   CHECK(faces == g.faceCount);
 }
+// The 4 x 4 grid of [0, 2] x [0, 1] (faces with angles of 26.6, 63.4 and 90 degrees).
+MeshBuffers stretchedSquare() {
+  MeshBuffers m = testshapes::square(4);
+  for (size_t v = 0; v < m.vertexCount(); ++v) m.positions[3 * v] *= 2;
+  return m;
+}
+// The vertex of g at (x, y, 0), or kNone.
+uint32_t vertexAt(const EdgeGraph& g, double x, double y) {
+  for (uint32_t v = 0; v < g.vertexCount; ++v)
+    if (std::abs(g.positions[v].x - x) < 1e-12 && std::abs(g.positions[v].y - y) < 1e-12) return v;
+  return kNone;
+}
 }  // namespace
 
 TEST_CASE("features: cube has 12 feature curves, 8 corners, 6 disk patches") {
@@ -319,14 +331,8 @@ TEST_CASE("features: straightenCutEars moves a cut across a one-face wedge below
   // a 4 x 4 grid of [0, 2] x [0, 1] (faces with angles of 26.6, 63.4 and 90 degrees); a cut from
   // the left side to the bottom with a kink at (1.5, 0.5): left along y = 0.5, then back down a
   // diagonal, a wedge of one face of 26.6 degrees at the kink
-  MeshBuffers m = testshapes::square(4);
-  for (size_t v = 0; v < m.vertexCount(); ++v) m.positions[3 * v] *= 2;
-  EdgeGraph g = buildEdgeGraph(m);
-  auto at = [&](double x, double y) {
-    for (uint32_t v = 0; v < g.vertexCount; ++v)
-      if (std::abs(g.positions[v].x - x) < 1e-12 && std::abs(g.positions[v].y - y) < 1e-12) return v;
-    return kNone;
-  };
+  EdgeGraph g = buildEdgeGraph(stretchedSquare());
+  auto at = [&](double x, double y) { return vertexAt(g, x, y); };
   Segmentation s = segment(g, FeatureOptions{});
   REQUIRE(s.patches.size() == 1);
   const std::vector<std::array<double, 2>> path = {{0, 0.5}, {0.5, 0.5}, {1, 0.5}, {1.5, 0.5}, {1, 0.25}, {1, 0}};
@@ -367,11 +373,7 @@ TEST_CASE("features: extendDanglingCurves does not end a walk on another curve's
   for (size_t v = 0; v < m.vertexCount(); ++v) m.positions[3 * v] *= 2, m.positions[3 * v + 1] = 1 - m.positions[3 * v + 1];
   for (size_t t = 0; t < m.triangleCount(); ++t) std::swap(m.triangles[3 * t + 1], m.triangles[3 * t + 2]);
   EdgeGraph g = buildEdgeGraph(m);
-  auto at = [&](double x, double y) {
-    for (uint32_t v = 0; v < g.vertexCount; ++v)
-      if (std::abs(g.positions[v].x - x) < 1e-12 && std::abs(g.positions[v].y - y) < 1e-12) return v;
-    return kNone;
-  };
+  auto at = [&](double x, double y) { return vertexAt(g, x, y); };
   auto edge = [&](std::array<double, 2> p, std::array<double, 2> q) { return g.findEdge(at(p[0], p[1]), at(q[0], q[1])); };
   const uint32_t D = at(0.5, 0.75), W = at(1, 0.5);
   REQUIRE(D < W);
@@ -392,5 +394,31 @@ TEST_CASE("features: extendDanglingCurves does not end a walk on another curve's
     CHECK_MESSAGE(valence != 1, "vertex ", v, " is a dangling end");
   }
   rebuildCurves(g, s);
+  checkPatchesAreDisks(g, s);
+}
+
+TEST_CASE("features: straightenCutEars moves a cut across a wedge whose rim is already a cut, and drops the branches left dangling") {
+  // the grid of the test above; cuts: from the left side along y = 0.5 to (1, 0.5), round the
+  // one face (1, 0.5), (1.5, 0.5), (1, 0.25), and from (1, 0.25) down to the bottom side. The
+  // wedge of 26.6 degrees at (1.5, 0.5) has the cut (1, 0.5) - (1, 0.25) for its rim: moving the
+  // cut across the face takes that edge off too, and both tails are left dangling: they go. No
+  // cut is left (one patch, a disk), the smallest wedge at (1.5, 0.5) is gone.
+  EdgeGraph g = buildEdgeGraph(stretchedSquare());
+  auto at = [&](double x, double y) { return vertexAt(g, x, y); };
+  Segmentation s = segment(g, FeatureOptions{});
+  REQUIRE(s.patches.size() == 1);
+  const std::vector<std::pair<std::array<double, 2>, std::array<double, 2>>> cuts = {
+      {{0, 0.5}, {0.5, 0.5}}, {{0.5, 0.5}, {1, 0.5}}, {{1, 0.5}, {1.5, 0.5}}, {{1.5, 0.5}, {1, 0.25}},
+      {{1, 0.25}, {1, 0.5}},  {{1, 0.25}, {1, 0}}};
+  for (const auto& [p, q] : cuts) {
+    const uint32_t e = g.findEdge(at(p[0], p[1]), at(q[0], q[1]));
+    REQUIRE(e != kNone);
+    s.edgeKind[e] = EdgeKind::Cut;
+  }
+  rebuildCurves(g, s);
+  REQUIRE(s.patches.size() == 3);
+  CHECK(straightenCutEars(g, s) == 1);
+  CHECK(std::count(s.edgeKind.begin(), s.edgeKind.end(), EdgeKind::Cut) == 0);
+  CHECK(s.patches.size() == 1);
   checkPatchesAreDisks(g, s);
 }
