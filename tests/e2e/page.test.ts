@@ -175,10 +175,11 @@ describe('demo page in headless Chromium', () => {
     });
 
     it('the main thread is never blocked > 100 ms during the remesh', async () => {
-      // The rAF probe measures every gap between frames, including the time the OS gives the
-      // renderer to other processes (the worker itself shares the 2 cores with Chromium's GL
-      // emulation). Work of the page's own shows up in every run; a gap from a neighbour's load
-      // does not: the best of three remeshes is the page's figure, and all three are printed.
+      // The rAF probe measures every gap between frames while the worker remeshes, three times:
+      // the first remesh (right after the Cancel test, in a fresh worker) and two more. Every one
+      // must stay under 100 ms. With the software GL here, anything that resizes or redraws a
+      // WebGL view during the remesh stalls the main thread on the starved GPU process (the
+      // first remesh's 130-415 ms gaps were the views resized by the cleared 'cancelled' notice).
       const lastRemesh = () => page.evaluate(() => (window as unknown as { conformeshPage: { lastRemesh: Record<string, number> } }).conformeshPage.lastRemesh);
       const runs = [await lastRemesh()];
       for (let i = 0; i < 2; ++i) {
@@ -190,7 +191,7 @@ describe('demo page in headless Chromium', () => {
       console.log(
         `max frame gap during the remesh, three runs: ${runs.map((r) => `${r.maxFrameGapMs!.toFixed(1)} ms (ending ${r.maxFrameGapEndMs!.toFixed(0)} ms into a ${(r.seconds! * 1000).toFixed(0)} ms remesh, ${r.frames} frames)`).join(', ')}`,
       );
-      expect(Math.min(...gaps)).toBeLessThan(100);
+      expect(Math.max(...gaps)).toBeLessThan(100);
     });
 
     it('the flattened-domain view draws every patch after a remesh', async () => {

@@ -33,6 +33,7 @@ import torusUrl from '../samples/torus.off?url';
 const $ = <T extends HTMLElement = HTMLElement>(sel: string) => document.querySelector<T>(sel)!;
 const errorBox = $('#error');
 const noticeBox = $('#notice');
+const loadPanel = $('#load');
 const probe = new FrameProbe();
 const analyzer = new Analyzer();
 
@@ -543,12 +544,26 @@ async function loadSample(which: string): Promise<void> {
 }
 
 // ---------------------------------------------------------------- remesh
+/**
+ * While a remesh runs, the panel above the views keeps its height: the error or notice it clears
+ * (e.g. "Remesh cancelled.") would otherwise let the views grow, and a resized WebGL canvas is
+ * redrawn. With a software GL (SwiftShader, software compositing) the three redraws and their
+ * synchronous read-backs waited on a GPU process starved by the worker: 180-360 ms frame gaps
+ * at the start of the remesh after a cancel (Chrome trace: ResizeObserver -> Viewport.resize,
+ * then Commit -> GLES2::ReadPixels). The hold is released when the result is applied (the views
+ * are rebuilt then anyway) or the run ends.
+ */
+function holdLoadPanel(hold: boolean): void {
+  loadPanel.style.minHeight = hold ? `${loadPanel.getBoundingClientRect().height}px` : '';
+}
+
 async function remesh(): Promise<void> {
   if (!input || running || !engine.canRemesh) return;
   const seq = loadSeq;
   const ac = new AbortController();
   running = ac;
   updateButtons();
+  holdLoadPanel(true);
   clearError(errorBox);
   notice(undefined);
   resetProgress();
@@ -570,6 +585,7 @@ async function remesh(): Promise<void> {
     // Applying the result is split into tasks, so the page keeps drawing frames in between (the
     // main thread is never blocked for long, even with a software GL).
     const nextTask = () => new Promise<void>((resolve) => setTimeout(resolve, 0));
+    holdLoadPanel(false);
     buildInput(false);
     await nextTask();
     if (seq !== loadSeq) return;
@@ -600,6 +616,7 @@ async function remesh(): Promise<void> {
     }
   } finally {
     if (running === ac) running = undefined;
+    holdLoadPanel(false);
     updateButtons();
   }
 }
