@@ -545,6 +545,11 @@ uint32_t improveCutJunctions(const EdgeGraph& g, Segmentation& seg, double scale
             if (y == u || forbidden[y] || changed[y]) continue;
             // a curve vertex is a landing point only when it is a smooth point of a curve
             if (valence[y] > 0 && (y == v || valence[y] != 2 || seg.vertexCorner[y])) continue;
+            // no hairpin at x: the new cut must not turn back on itself there (on a fan of
+            // needle faces a shortest path can, making a wedge of a degree or two). At u the
+            // path continues the part of the cut that stays.
+            const uint32_t back = x == u ? path[k + 1] : g.otherVertex(predEdge[x], x);
+            if (angleBetween(g.positions[back] - g.positions[x], g.positions[y] - g.positions[x]) < kNarrowCutWedge) continue;
             const double nd = d + g.edgeLength(e);
             if (nd < dist[y] && nd <= radius) {
               if (std::isinf(dist[y])) seen.push_back(y);
