@@ -15,6 +15,7 @@ import {
 import { toBufferGeometry } from 'conformesh/three';
 import type { FlatPatch, Mesh3 } from './engine.ts';
 import { minAngleColor, patchColor, ramp, type RGB } from './colors.ts';
+import { packBoxes, patchBox, type Box2 } from './atlas.ts';
 
 /** A non-indexed triangle mesh (one colour per triangle) with flat shading. */
 export function faceColoredMesh(mesh: Mesh3): Mesh {
@@ -86,6 +87,8 @@ export { minAngleColor, patchColor };
 
 export interface FlatScene {
   group: Group;
+  /** Whether any patch carries the conformal factor (fills coloured by it, else by patch). */
+  hasFactor: boolean;
   /** Filled meshes, one per patch (pickable; userData.patch is the patch id). */
   fills: Mesh[];
   layoutLines: LineSegments[];
@@ -106,15 +109,6 @@ function planarGeometry(uv: Float64Array, triangles: Uint32Array, dx: number, dy
   return g;
 }
 
-function box2(uv: Float64Array): [number, number, number, number] {
-  let x0 = Infinity, y0 = Infinity, x1 = -Infinity, y1 = -Infinity;
-  for (let i = 0; i < uv.length; i += 2) {
-    x0 = Math.min(x0, uv[i]!); x1 = Math.max(x1, uv[i]!);
-    y0 = Math.min(y0, uv[i + 1]!); y1 = Math.max(y1, uv[i + 1]!);
-  }
-  return [x0, y0, x1, y1];
-}
-
 /**
  * Every patch's planar mesh, packed side by side (shelf packing by height), filled with the
  * conformal factor (log area element 2u on one colour scale for all patches), with the input
@@ -122,41 +116,30 @@ function box2(uv: Float64Array): [number, number, number, number] {
  */
 export function flatScene(patches: FlatPatch[]): FlatScene {
   const group = new Group();
-  const scene: FlatScene = { group, fills: [], layoutLines: [], refinedLines: [], factorRange: [0, 0] };
+  const scene: FlatScene = { group, hasFactor: false, fills: [], layoutLines: [], refinedLines: [], factorRange: [0, 0] };
   const items = patches
-    .map((p) => ({ p, uv: p.layout?.uv ?? p.refined?.uv }))
-    .filter((x): x is { p: FlatPatch; uv: Float64Array } => !!x.uv && x.uv.length >= 6)
-    .map((x) => ({ ...x, box: box2(x.uv) }));
+    .map((p) => ({ p, uv: p.layout?.uv ?? p.refined?.uv, box: patchBox(p) }))
+    .filter((x): x is { p: FlatPatch; uv: Float64Array; box: Box2 } => !!x.uv && x.uv.length >= 6 && !!x.box);
   let fmin = Infinity, fmax = -Infinity;
   for (const { p } of items) {
     const f = p.layout?.factor ?? p.refined?.factor;
     if (f) for (let i = 0; i < f.length; ++i) { fmin = Math.min(fmin, f[i]!); fmax = Math.max(fmax, f[i]!); }
   }
-  scene.factorRange = Number.isFinite(fmin) ? [fmin, fmax] : [0, 0];
-  let area = 0, maxDim = 0;
-  for (const { box } of items) {
-    area += (box[2] - box[0]) * (box[3] - box[1]);
-    maxDim = Math.max(maxDim, box[2] - box[0], box[3] - box[1]);
-  }
-  const gap = 0.06 * Math.sqrt(area / Math.max(1, items.length));
-  const rowWidth = Math.max(maxDim, 1.6 * Math.sqrt(area));
-  const order = [...items].sort((a, b) => b.box[3] - b.box[1] - (a.box[3] - a.box[1]));
-  let x = 0, y = 0, rowH = 0;
+  scene.hasFactor = Number.isFinite(fmin);
+  scene.factorRange = scene.hasFactor ? [fmin, fmax] : [0, 0];
+  // the same packing as the UV atlas of the OBJ export (atlas.ts)
+  const moves = packBoxes(items.map((x) => x.box));
   const span = scene.factorRange[1] - scene.factorRange[0];
-  for (const { p, box } of order) {
-    const w = box[2] - box[0], h = box[3] - box[1];
-    if (x > 0 && x + w > rowWidth) { x = 0; y -= rowH + gap; rowH = 0; }
-    const dx = x - box[0], dy = y - box[3];
-    x += w + gap;
-    rowH = Math.max(rowH, h);
+  for (const [i, { p }] of items.entries()) {
+    const { dx, dy } = moves[i]!;
     const fillSrc = p.layout ?? p.refined!;
     const g = planarGeometry(fillSrc.uv, fillSrc.triangles, dx, dy);
     const n = fillSrc.uv.length / 2;
     const col = new Float32Array(3 * n);
     const base = patchColor(p.id);
-    for (let i = 0; i < n; ++i) {
-      const c = fillSrc.factor ? ramp(span > 0 ? (fillSrc.factor[i]! - scene.factorRange[0]) / span : 0.5) : base;
-      col[3 * i] = c[0]; col[3 * i + 1] = c[1]; col[3 * i + 2] = c[2];
+    for (let v = 0; v < n; ++v) {
+      const c = fillSrc.factor ? ramp(span > 0 ? (fillSrc.factor[v]! - scene.factorRange[0]) / span : 0.5) : base;
+      col[3 * v] = c[0]; col[3 * v + 1] = c[1]; col[3 * v + 2] = c[2];
     }
     g.setAttribute('color', new BufferAttribute(col, 3));
     g.userData.baseColors = col.slice();

@@ -32,6 +32,7 @@ export class Viewport {
   pickable: Object3D[] = [];
   onPick: ((hit: PickHit | null) => void) | undefined;
   private pending = false;
+  private waiting: (() => void)[] = [];
   private readonly raycaster = new Raycaster();
 
   constructor(readonly container: HTMLElement, readonly mode: '3d' | '2d') {
@@ -75,7 +76,16 @@ export class Viewport {
     requestAnimationFrame(() => {
       this.pending = false;
       this.renderer.render(this.scene, this.camera);
+      const done = this.waiting;
+      this.waiting = [];
+      for (const f of done) f();
     });
+  }
+
+  /** Resolves once the requested render is drawn (at once when none is pending). */
+  drawn(): Promise<void> {
+    if (!this.pending) return Promise.resolve();
+    return new Promise((resolve) => this.waiting.push(resolve));
   }
 
   /** Render now (used before screenshots and after loading). */
