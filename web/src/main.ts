@@ -17,6 +17,7 @@ import {
   edgeLines,
   faceColoredMesh,
   flatScene,
+  materialSamples,
   minAngleColor,
   paintFaces,
   paintFlat,
@@ -67,7 +68,11 @@ let running: AbortController | undefined;
 let loadSeq = 0;
 const lastLoad = { analysisMs: NaN, buildMs: NaN, firstFrameMs: NaN };
 /** The last remesh: the page probe's worst frame gap, and performance.now() at the click, the result's arrival and the end of its application. */
-const lastRemesh = { maxFrameGapMs: NaN, maxFrameGapEndMs: NaN, frames: 0, seconds: NaN, applyMs: NaN, startAt: NaN, resultAt: NaN, appliedAt: NaN };
+const lastRemesh = {
+  maxFrameGapMs: NaN, maxFrameGapEndMs: NaN, frames: 0, seconds: NaN, applyMs: NaN, startAt: NaN, resultAt: NaN, appliedAt: NaN,
+  /** Main-thread time of each step of the result's application (ms). */
+  applySteps: {} as Record<string, number>,
+};
 
 const params: Params = { minAngle: 30, edgeLength: 0.02, featureAngle: 40, chordTolerance: 0.001, boundary: 'free' };
 const toggles = { features: true, patches: true, inputWire: false, layout: true, refined: true, remeshWire: true };
@@ -97,6 +102,9 @@ const inputView = new Viewport($('[data-testid=canvas-input]'), '3d');
 const flatView = new Viewport($('[data-testid=canvas-flat]'), '2d');
 const remeshView = new Viewport($('[data-testid=canvas-remesh]'), '3d');
 const views = [inputView, flatView, remeshView];
+for (const v of views) {
+  v.warmUp(materialSamples(v.mode)).catch((e) => showError(errorBox, e, 'compiling the views\u2019 shaders'));
+}
 
 let inputMesh: Mesh | undefined;
 let inputFeatures: LineSegments | undefined;
@@ -650,31 +658,40 @@ async function remesh(): Promise<void> {
     output = { result, atlas, angles: a.angles!, minAngles: minAnglePerTriangle(a.angles!), stats: a.stats!, seconds };
     if (result.inputPatchOfFace) libraryPatchOfFace = result.inputPatchOfFace;
     selected = undefined;
-    // Applying the result is split into tasks, so the page keeps drawing frames in between (the
-    // main thread is never blocked for long, even with a software GL).
+    // Applying the result is split into tasks, one view per frame, so the page keeps drawing
+    // frames in between (the main thread is never blocked for long, even with a software GL).
     const nextTask = () => new Promise<void>((resolve) => setTimeout(resolve, 0));
+    const applySteps: Record<string, number> = {};
+    const step = (name: string, f: () => void) => {
+      const t = performance.now();
+      f();
+      applySteps[name] = performance.now() - t;
+    };
+    // one view per frame: build, let the frame with its render go out, then the next
+    const drawn = async (v: Viewport) => {
+      await v.drawn();
+      await nextTask();
+    };
     holdLoadPanel(false);
-    buildInput(false);
-    await nextTask();
+    step('input', () => buildInput(false));
+    await drawn(inputView);
     if (seq !== loadSeq) return;
-    buildFlat();
-    await nextTask();
+    step('flat', buildFlat);
+    await drawn(flatView);
     if (seq !== loadSeq) return;
-    buildRemesh();
-    await nextTask();
+    step('remesh', buildRemesh);
+    await drawn(remeshView);
     if (seq !== loadSeq) return;
-    if (toggles.remeshWire) ensureRemeshWire();
-    await nextTask();
+    step('remeshWire', () => { if (toggles.remeshWire) ensureRemeshWire(); });
+    await drawn(remeshView);
     if (seq !== loadSeq) return;
-    qualityTable();
-    histogram();
-    legend();
+    step('panels', () => { qualityTable(); histogram(); legend(); });
     await Promise.all(views.map((v) => v.drawn()));
     if (seq !== loadSeq) return;
     const appliedAt = performance.now();
     Object.assign(lastRemesh, {
       maxFrameGapMs: gap.maxGap, maxFrameGapEndMs: gap.maxGapAt - t0, frames: gap.frames, seconds,
-      applyMs: appliedAt - t1, startAt: t0, resultAt, appliedAt,
+      applyMs: appliedAt - t1, startAt: t0, resultAt, appliedAt, applySteps,
     });
     setState('remeshed');
   } catch (e) {
