@@ -13,6 +13,8 @@ import { afterAll, beforeAll, describe, expect, it } from 'vitest';
 import { createRemesher, readMesh } from '../../dist/index.js';
 import { decodePng, pixelStats, type Image } from './png.ts';
 import { STAGE_BARS } from '../../web/src/stages.ts';
+import { packBoxes, type Box2 } from '../../web/src/atlas.ts';
+import { uniqueEdges } from '../../web/src/scenes.ts';
 
 const root = fileURLToPath(new URL('../../', import.meta.url));
 const webDist = join(root, 'web', 'dist');
@@ -478,6 +480,33 @@ describe('demo page in headless Chromium', () => {
     expect(await page.textContent('[data-testid=notice]')).toMatch(/Topology findings/);
   });
 
+  it('a curved disk gets a flatten preview coloured by its conformal factor', async () => {
+    // a paraboloid cap (one boundary loop, not developable: u varies), flattened on loading
+    const n = 12;
+    const lines: string[] = [];
+    for (let j = 0; j <= n; ++j) {
+      for (let i = 0; i <= n; ++i) {
+        const x = -1 + (2 * i) / n, y = -1 + (2 * j) / n;
+        lines.push(`v ${x} ${y} ${0.6 * (x * x + y * y)}`);
+      }
+    }
+    const at = (i: number, j: number) => j * (n + 1) + i + 1;
+    for (let j = 0; j < n; ++j) {
+      for (let i = 0; i < n; ++i) lines.push(`f ${at(i, j)} ${at(i + 1, j)} ${at(i + 1, j + 1)}`, `f ${at(i, j)} ${at(i + 1, j + 1)} ${at(i, j + 1)}`);
+    }
+    await page.setInputFiles('#file-input', { name: 'cap.obj', mimeType: 'text/plain', buffer: Buffer.from(lines.join('\n')) });
+    expect(await waitState(['loaded', 'error'], 30_000)).toBe('loaded');
+    await page.waitForFunction(() => /conformal factor/.test(document.querySelector('#legend-flat')?.textContent ?? ''), undefined, { timeout: 30_000 });
+    const legend = (await page.textContent('#legend-flat')) ?? '';
+    const m = /u, (-?[0-9.]+) \(dark\) … (-?[0-9.]+) \(yellow\)/.exec(legend);
+    expect(m, legend).not.toBeNull();
+    expect(Number(m![2]) - Number(m![1]), 'range of u').toBeGreaterThan(0.05);
+    const s = await canvasStats('canvas-flat', 'cap-flatten-preview');
+    expect(s.variance).toBeGreaterThan(20);
+    expect(s.nonBackground).toBeGreaterThan(0.05);
+    expect(await errorsShown()).toEqual([]);
+  });
+
   it('shows a readable error, with its code and what to do, for a corrupt file', async () => {
     await page.setInputFiles('#file-input', {
       name: 'corrupt.off',
@@ -497,6 +526,30 @@ describe('demo page in headless Chromium', () => {
     const s = await canvasStats('canvas-input', 'input-after-error');
     expect(s.variance).toBeGreaterThan(20);
     expect(pageErrors).toEqual([]);
+  });
+});
+
+describe('page helpers', () => {
+  it('uniqueEdges lists every edge of a triangle list once', () => {
+    // two triangles sharing the edge 1-2, and a third on its own
+    const e = uniqueEdges(Uint32Array.of(0, 1, 2, 2, 1, 3, 4, 5, 6), 7);
+    const pairs = [...Array(e.length / 2).keys()].map((i) => [e[2 * i]!, e[2 * i + 1]!].sort().join('-')).sort();
+    expect(pairs).toEqual(['0-1', '0-2', '1-2', '1-3', '2-3', '4-5', '4-6', '5-6']);
+  });
+
+  it('packBoxes never overlaps two boxes', () => {
+    const boxes: Box2[] = [];
+    for (let i = 0; i < 40; ++i) {
+      const x = Math.sin(i) * 3, y = Math.cos(3 * i) * 2, w = 0.2 + (i % 7) * 0.3, h = 0.1 + (i % 5) * 0.45;
+      boxes.push([x, y, x + w, y + h]);
+    }
+    const moved = packBoxes(boxes).map(({ dx, dy }, i) => [boxes[i]![0] + dx, boxes[i]![1] + dy, boxes[i]![2] + dx, boxes[i]![3] + dy]);
+    for (let i = 0; i < moved.length; ++i) {
+      for (let j = i + 1; j < moved.length; ++j) {
+        const p = moved[i]!, q = moved[j]!;
+        expect(p[0]! < q[2]! && q[0]! < p[2]! && p[1]! < q[3]! && q[1]! < p[3]!, `boxes ${i}, ${j}`).toBe(false);
+      }
+    }
   });
 });
 
