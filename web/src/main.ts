@@ -145,6 +145,12 @@ function featureEdges(): Uint32Array | undefined {
 }
 
 function legend(): void {
+  legendText();
+  // a legend is clamped to three lines: the whole text on hover
+  for (const id of ['#legend-input', '#legend-flat', '#legend-remesh']) $(id).title = $(id).textContent ?? '';
+}
+
+function legendText(): void {
   const li = $('#legend-input');
   const lf = $('#legend-flat');
   const lr = $('#legend-remesh');
@@ -476,6 +482,7 @@ function setProgress(stage: string, fraction: number): void {
 function notice(text: string | undefined): void {
   noticeBox.hidden = !text;
   noticeBox.textContent = text ?? '';
+  noticeBox.title = text ?? ''; // one line shown: the whole text on hover
 }
 
 function updateButtons(): void {
