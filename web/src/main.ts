@@ -211,6 +211,12 @@ function buildInput(frame: boolean): void {
   inputView.requestRender();
 }
 
+/** After a remesh: the input mesh stays, its patch colours change (rebuilt only when the result brings its own feature curves). */
+function refreshInput(): void {
+  if (!inputMesh || output?.result.inputFeatureEdges) buildInput(false);
+  else paintInput();
+}
+
 /** The input wireframe is built on first use (it costs as much as the mesh itself). */
 function ensureInputWire(): void {
   if (inputWire || !input) return;
@@ -680,7 +686,7 @@ async function remesh(): Promise<void> {
       await nextTask();
     };
     holdLoadPanel(false);
-    step('input', () => buildInput(false));
+    step('input', refreshInput);
     await drawn(inputView);
     if (seq !== loadSeq) return;
     step('flat', buildFlat);
