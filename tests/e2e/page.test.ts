@@ -447,8 +447,8 @@ describe('demo page in headless Chromium', () => {
       // 130-415 ms gaps were the views resized by the cleared 'cancelled' notice).
       // The gaps while the result is applied (views rebuilt and redrawn, one per frame) are only
       // reported: here each frame that shows a rebuilt view waits for SwiftShader to draw it
-      // (GLES2::ReadPixels in the commit, 95-150 ms in a Chrome trace), and the first remesh of a
-      // page had 118-225 ms gaps there (runs 2-3: 28-135 ms), over 2 runs of this file.
+      // (GLES2::ReadPixels in the commit, 95-150 ms in a Chrome trace): the first remesh of a
+      // page had 136-221 ms gaps there, runs 2-3 67-121 ms at most (3 runs of this file).
       for (let i = 0; i < 2; ++i) timings.push(await remeshWithProbe());
       timings.forEach((t, i) => console.log(`remesh run ${i + 1}: ${describeTiming(t)}`));
       expect(Math.max(...timings.map((t) => t.remeshMaxGap))).toBeLessThan(100);
