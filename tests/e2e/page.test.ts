@@ -11,7 +11,10 @@ import { chromium, type BrowserContext, type Page } from 'playwright-core';
 import { build } from 'vite';
 import { afterAll, beforeAll, describe, expect, it } from 'vitest';
 import { createRemesher, readMesh } from '../../dist/index.js';
-import { decodePng, pixelStats } from './png.ts';
+import { decodePng, pixelStats, type Image } from './png.ts';
+import { STAGE_BARS } from '../../web/src/stages.ts';
+import { packBoxes, type Box2 } from '../../web/src/atlas.ts';
+import { uniqueEdges } from '../../web/src/scenes.ts';
 
 const root = fileURLToPath(new URL('../../', import.meta.url));
 const webDist = join(root, 'web', 'dist');
@@ -71,6 +74,133 @@ async function canvasStats(testid: string, name: string) {
   return pixelStats(decodePng(png));
 }
 
+/** A CSS-pixel point of a view's canvas that shows a triangle: nearest the centre, its 5x5 neighbourhood all off the background. */
+async function surfacePoint(testid: string): Promise<{ x: number; y: number }> {
+  await page.evaluate(() => (window as unknown as { conformeshPage: { renderAll(): void } }).conformeshPage.renderAll());
+  const canvas = page.locator(`[data-testid=${testid}] canvas`);
+  const img = decodePng(await canvas.screenshot({ scale: 'css' }));
+  const bg = backgroundOf(img);
+  const off = (x: number, y: number) => {
+    const i = 4 * (y * img.width + x);
+    return Math.abs(img.data[i]! - bg[0]) + Math.abs(img.data[i + 1]! - bg[1]) + Math.abs(img.data[i + 2]! - bg[2]) > 24;
+  };
+  let best: { x: number; y: number; d: number } | undefined;
+  for (let y = 3; y < img.height - 3; y += 2) {
+    for (let x = 3; x < img.width - 3; x += 2) {
+      const d = Math.hypot(x - img.width / 2, y - img.height / 2);
+      if (best && d >= best.d) continue;
+      let all = true;
+      for (let dy = -2; dy <= 2 && all; ++dy) for (let dx = -2; dx <= 2 && all; ++dx) all = off(x + dx, y + dy);
+      if (all) best = { x, y, d };
+    }
+  }
+  if (!best) throw new Error(`${testid}: no pixel shows a triangle`);
+  const box = (await canvas.boundingBox())!;
+  return { x: box.x + best.x + 0.5, y: box.y + best.y + 0.5 };
+}
+
+/** The most common colour of an image (the view's clear colour). */
+function backgroundOf(img: Image): [number, number, number] {
+  const counts = new Map<number, number>();
+  for (let i = 0; i < img.data.length; i += 4) {
+    const key = (img.data[i]! << 16) | (img.data[i + 1]! << 8) | img.data[i + 2]!;
+    counts.set(key, (counts.get(key) ?? 0) + 1);
+  }
+  const key = [...counts.entries()].reduce((a, b) => (b[1] > a[1] ? b : a))[0];
+  return [(key >> 16) & 255, (key >> 8) & 255, key & 255];
+}
+
+interface SelectionState {
+  selected: number | undefined;
+  input: number[];
+  flat: number[];
+  remesh: number[];
+  library: { inputFaces?: number[]; triangles?: number[] };
+}
+const selectionState = () =>
+  page.evaluate(() => (window as unknown as { conformeshPage: { selectionState(): SelectionState } }).conformeshPage.selectionState());
+
+/** Every time the page's error box was shown since the last call (its text), from a MutationObserver. */
+async function errorsShown(): Promise<string[]> {
+  return page.evaluate(() => {
+    const w = window as unknown as { errorBoxLog: string[] };
+    const seen = w.errorBoxLog.splice(0);
+    const box = document.querySelector<HTMLElement>('[data-testid=error]')!;
+    if (!box.hidden) seen.push(`still shown: ${box.textContent}`);
+    return seen;
+  });
+}
+
+interface RemeshTiming {
+  /** Worst gap between frames from the click until the result arrived (the gap open then included). */
+  remeshMaxGap: number;
+  /** Gaps from the result's arrival until the views were drawn, and the gap across the arrival. */
+  applyGaps: number[];
+  straddling: number;
+  /** Main-thread ms of each step of the application, as the page measured them. */
+  steps: Record<string, number>;
+  remeshMs: number;
+  applyMs: number;
+  frames: number;
+}
+
+/**
+ * Click Remesh with the test's own requestAnimationFrame probe running (injected, independent of
+ * the page's), wait for the 'remeshed' state (the result applied and the three views drawn), and
+ * return the frame gaps: over the remesh itself (click to the result's arrival in the page) and
+ * over the result's application (arrival to the views drawn, plus the frame after).
+ */
+async function remeshWithProbe(): Promise<RemeshTiming> {
+  await page.evaluate(() => {
+    const rec = { frames: [] as number[], clickAt: NaN, stop: false };
+    (window as unknown as { testProbe: typeof rec }).testProbe = rec;
+    document.querySelector('[data-testid=remesh]')!.addEventListener('click', () => { rec.clickAt = performance.now(); }, { once: true, capture: true });
+    const tick = () => {
+      if (rec.stop) return;
+      rec.frames.push(performance.now());
+      requestAnimationFrame(tick);
+    };
+    requestAnimationFrame(tick);
+  });
+  await page.click('[data-testid=remesh]');
+  const state = await waitState(['remeshed', 'error'], 100_000);
+  if (state === 'error') throw new Error(`remesh failed in the page: ${await page.textContent('[data-testid=error]')}`);
+  type Win = { testProbe: { frames: number[]; clickAt: number; stop: boolean }; conformeshPage: { lastRemesh: Record<string, number> } };
+  // one more frame after the application, so the last gap is closed
+  await page.waitForFunction(() => {
+    const w = window as unknown as Win;
+    return w.testProbe.frames.some((t) => t > w.conformeshPage.lastRemesh.appliedAt!);
+  }, undefined, { timeout: 10_000 });
+  const r = await page.evaluate(() => {
+    const w = window as unknown as Win;
+    w.testProbe.stop = true;
+    const { resultAt, appliedAt, applySteps } = w.conformeshPage.lastRemesh as unknown as { resultAt: number; appliedAt: number; applySteps: Record<string, number> };
+    return { frames: w.testProbe.frames, clickAt: w.testProbe.clickAt, resultAt, appliedAt, applySteps };
+  });
+  expect(r.clickAt, 'click seen').toBeGreaterThan(0);
+  expect(r.resultAt).toBeGreaterThan(r.clickAt);
+  const gaps = (times: number[]) => times.slice(1).map((t, i) => t - times[i]!);
+  const during = [r.clickAt, ...r.frames.filter((t) => t > r.clickAt && t < r.resultAt), r.resultAt];
+  const firstAfter = r.frames.findIndex((t) => t >= r.resultAt);
+  const endIdx = r.frames.findIndex((t) => t > r.appliedAt);
+  const applying = [r.resultAt, ...r.frames.slice(firstAfter, endIdx + 1)];
+  return {
+    remeshMaxGap: Math.max(...gaps(during)),
+    applyGaps: gaps(applying),
+    straddling: firstAfter > 0 ? r.frames[firstAfter]! - r.frames[firstAfter - 1]! : NaN,
+    steps: r.applySteps,
+    remeshMs: r.resultAt - r.clickAt,
+    applyMs: r.appliedAt - r.resultAt,
+    frames: during.length - 2,
+  };
+}
+
+const timings: RemeshTiming[] = [];
+const describeTiming = (t: RemeshTiming) =>
+  `remesh ${t.remeshMs.toFixed(0)} ms, ${t.frames} frames, max gap ${t.remeshMaxGap.toFixed(1)} ms; ` +
+  `application ${t.applyMs.toFixed(0)} ms, gaps [${t.applyGaps.map((g) => g.toFixed(0)).join(', ')}] ms, gap across the arrival ${t.straddling.toFixed(0)} ms; ` +
+  `steps ${Object.entries(t.steps).map(([k, v]) => `${k} ${v.toFixed(0)}`).join(', ')} ms`;
+
 async function waitState(states: string[], timeout: number): Promise<string> {
   await page.waitForFunction((s) => s.includes(document.body.dataset.state ?? ''), states, { timeout });
   return page.evaluate(() => document.body.dataset.state ?? '');
@@ -99,6 +229,15 @@ describe('demo page in headless Chromium', () => {
     });
     await page.goto(pageUrl);
     await waitState(['ready'], 30_000);
+    // every time the error box is shown, with its text (the page turns uncaught errors into it)
+    await page.evaluate(() => {
+      const w = window as unknown as { errorBoxLog: string[] };
+      w.errorBoxLog = [];
+      const box = document.querySelector<HTMLElement>('[data-testid=error]')!;
+      new MutationObserver(() => {
+        if (!box.hidden) w.errorBoxLog.push(box.textContent ?? '');
+      }).observe(box, { attributes: true, attributeFilter: ['hidden'], childList: true, subtree: true });
+    });
   });
 
   afterAll(async () => {
@@ -122,6 +261,9 @@ describe('demo page in headless Chromium', () => {
     expect(s.variance).toBeGreaterThan(20);
     expect(s.nonBackground).toBeGreaterThan(0.05);
     await shot('loaded');
+    // before a remesh the input shows the page's own patch preview, and says so
+    expect(await page.textContent('#legend-input')).toMatch(/preview/);
+    expect(await errorsShown()).toEqual([]);
     if (!HAS_REMESH) {
       // the page must say so, not show an empty or fake result
       expect(await page.isDisabled('[data-testid=remesh]')).toBe(true);
@@ -136,30 +278,152 @@ describe('demo page in headless Chromium', () => {
       await page.click('[data-testid=cancel]');
       expect(await waitState(['loaded', 'error', 'remeshed'], 10_000)).toBe('loaded');
       expect(await page.textContent('[data-testid=notice]')).toMatch(/cancelled/i);
+      expect(await errorsShown()).toEqual([]);
     });
 
-    it('remeshes fandisk in the worker: the table reports the exported mesh, input and remesh views drawn', async () => {
-      await page.click('[data-testid=remesh]');
-      const state = await waitState(['remeshed', 'error'], 100_000);
-      if (state === 'error') throw new Error(`remesh failed in the page: ${await page.textContent('[data-testid=error]')}`);
+    it('remeshes fandisk in the worker: the table reports the exported mesh, all three views drawn, no error shown', async () => {
+      const t = await remeshWithProbe();
+      timings.push(t);
+      console.log(`first remesh: ${describeTiming(t)}`);
       const minOut = parseFloat((await page.textContent('[data-testid=q-out-minAngle]')) ?? '');
       expect(Number.isFinite(minOut)).toBe(true);
       const triangles = Number(await page.textContent('[data-testid=q-out-triangles]'));
       expect(Number.isInteger(triangles) && triangles > 0).toBe(true);
-      const timing = await page.evaluate(() => (window as unknown as { conformeshPage: { lastRemesh: Record<string, number> } }).conformeshPage.lastRemesh);
-      console.log(`remesh in page: ${JSON.stringify(timing)}`);
-      expect(timing.frames).toBeGreaterThan(0);
-      for (const [id, name] of [['canvas-input', 'input-view'], ['canvas-remesh', 'remesh-view']] as const) {
+      expect(Number(await page.textContent('[data-testid="q-out-report.triangles"]')), 'the library report\u2019s triangles').toBe(triangles);
+      for (const [id, name] of [['canvas-input', 'input-view'], ['canvas-flat', 'flat-view'], ['canvas-remesh', 'remesh-view']] as const) {
         const s = await canvasStats(id, `remeshed-${name}`);
         expect(s.variance, `${id} variance`).toBeGreaterThan(20);
         expect(s.nonBackground, `${id} drawn share`).toBeGreaterThan(0.05);
       }
       await shot('remeshed');
+      expect(await errorsShown(), 'error box shown during load or remesh').toEqual([]);
       // the exported OBJ is the remesh the table describes: same triangle count, same worst angle
       const [download] = await Promise.all([page.waitForEvent('download'), page.click('#export button[data-format=obj]')]);
       const exported = await readMesh(await readFile(await download.path()), 'obj');
       expect(exported.triangles.length / 3).toBe(triangles);
       expect(Math.abs(worstAngleDeg(exported) - minOut)).toBeLessThan(0.1);
+    });
+
+    it('each progress bar goes 0 -> 100 % within its own stage, and the stages end in the library\u2019s order', async () => {
+      type Log = { events: { stage: string; fraction: number }[]; bars: { stage: string; value: number }[] };
+      const log = await page.evaluate(() => (window as unknown as { conformeshPage: { progressLog: Log } }).conformeshPage.progressLog);
+      const order = STAGE_BARS.map((b) => b.stage);
+      // every stage the library reported has a bar (a new stage name would go unseen otherwise)
+      for (const e of log.events) expect(order, `stage '${e.stage}' reported`).toContain(e.stage);
+      // the library's overall fraction is monotone, and its stages come in the bars' order
+      for (let i = 1; i < log.events.length; ++i) {
+        expect(log.events[i]!.fraction).toBeGreaterThanOrEqual(log.events[i - 1]!.fraction);
+        expect(order.indexOf(log.events[i]!.stage)).toBeGreaterThanOrEqual(order.indexOf(log.events[i - 1]!.stage));
+      }
+      const completedAt: number[] = [];
+      for (const stage of order) {
+        const values = log.bars.map((u, i) => ({ ...u, i })).filter((u) => u.stage === stage);
+        expect(values.length, `${stage} shown`).toBeGreaterThan(0);
+        for (let k = 1; k < values.length; ++k) expect(values[k]!.value, `${stage} monotone`).toBeGreaterThanOrEqual(values[k - 1]!.value);
+        expect(values.at(-1)!.value, `${stage} ends at 100 %`).toBe(1);
+        completedAt.push(values.find((u) => u.value === 1)!.i);
+        // a stage that reports along the way starts near 0 and reaches most of its bar by its own events
+        const own = log.events.filter((e) => e.stage === stage);
+        if (own.length >= 5) {
+          expect(values[0]!.value, `${stage} starts near 0 %`).toBeLessThan(0.25);
+          const ownBars = values.filter((u) => u.value < 1 || own.some((e) => e.fraction >= STAGE_BARS.find((b) => b.stage === stage)!.hi));
+          expect(Math.max(...ownBars.map((u) => u.value)), `${stage} reaches most of its bar itself`).toBeGreaterThan(0.75);
+        }
+      }
+      for (let k = 1; k < completedAt.length; ++k) expect(completedAt[k], `${order[k]} completes after ${order[k - 1]}`).toBeGreaterThan(completedAt[k - 1]!);
+      // the shown bars say the same
+      const shown = await page.$$eval('#progress li', (lis) => lis.map((li) => [li.getAttribute('data-stage'), li.className]));
+      expect(shown).toEqual(order.map((s) => [s, 'done']));
+    });
+
+    it('the bars\u2019 stage intervals are the library\u2019s (bindings/remesh.cpp overallProgress)', async () => {
+      const cpp = await readFile(join(root, 'bindings', 'remesh.cpp'), 'utf8');
+      for (const bar of STAGE_BARS) {
+        const name = bar.stage.split('-').map((w) => w[0]!.toUpperCase() + w.slice(1)).join('');
+        const m = new RegExp(`case Stage::${name}: lo = ([0-9.]+), hi = ([0-9.]+);`).exec(cpp);
+        expect(m, `Stage::${name} in overallProgress`).not.toBeNull();
+        expect([bar.lo, bar.hi]).toEqual([Number(m![1]), Number(m![2])]);
+      }
+    });
+
+    it('clicking a patch in any view highlights the same library patch in all three views', async () => {
+      expect(await page.textContent('#legend-input')).toMatch(/library/);
+      for (const view of ['canvas-input', 'canvas-remesh', 'canvas-flat']) {
+        const at = await surfacePoint(view);
+        await page.mouse.click(at.x, at.y);
+        const s = await selectionState();
+        expect(s.selected, `a patch selected by clicking ${view}`).toBeTypeOf('number');
+        // the views highlight what the library's result says belongs to that patch
+        expect(s.library.inputFaces!.length).toBeGreaterThan(0);
+        expect(s.input, `${view}: input faces highlighted`).toEqual(s.library.inputFaces);
+        expect(s.remesh, `${view}: remesh triangles highlighted`).toEqual(s.library.triangles);
+        expect(s.flat, `${view}: flattened patch highlighted`).toEqual([s.selected]);
+        for (const legend of ['#legend-input', '#legend-flat', '#legend-remesh']) {
+          expect(await page.textContent(legend)).toContain(`selected patch ${s.selected}`);
+        }
+        await shot(`selected-from-${view}`);
+      }
+      // a click on the background clears the selection everywhere
+      const box = (await page.locator('[data-testid=canvas-input] canvas').boundingBox())!;
+      await page.mouse.click(box.x + 3, box.y + 3);
+      const s = await selectionState();
+      expect(s.selected).toBeUndefined();
+      expect(s.flat.length).toBeGreaterThan(1);
+      expect(await errorsShown()).toEqual([]);
+    });
+
+    it('exports an OBJ with conformal UVs: every corner has a vt in [0,1], patches do not overlap and are not flipped', async () => {
+      expect(await page.isDisabled('#export button[data-format=obj-uv]')).toBe(false);
+      const [uvDownload] = await Promise.all([page.waitForEvent('download'), page.click('#export button[data-format=obj-uv]')]);
+      const [plainDownload] = await Promise.all([page.waitForEvent('download'), page.click('#export button[data-format=obj]')]);
+      const text = await readFile(await uvDownload.path(), 'utf8');
+      const plain = await readFile(await plainDownload.path(), 'utf8');
+      const lines = text.split('\n');
+      const vt = lines.filter((l) => l.startsWith('vt ')).map((l) => l.slice(3).trim().split(/\s+/).map(Number));
+      const faces = lines.filter((l) => l.startsWith('f ')).map((l) => l.slice(2).trim().split(/\s+/).map((c) => c.split('/').map(Number)));
+      expect(faces.length).toBe(Number(await page.textContent('[data-testid=q-out-triangles]')));
+      for (const f of faces) {
+        expect(f.length).toBe(3);
+        for (const c of f) {
+          expect(c.length, 'corner v/vt').toBe(2);
+          expect(Number.isInteger(c[1]) && c[1]! >= 1 && c[1]! <= vt.length).toBe(true);
+        }
+      }
+      for (const t of vt) {
+        expect(t.length).toBe(2);
+        for (const x of t) expect(x >= 0 && x <= 1, `vt ${t} in [0,1]`).toBe(true);
+      }
+      // the 3D part is the plain export: same lines without vt, same vertex indices per face
+      const strip = (ls: string[]) => ls.filter((l) => !l.startsWith('vt ')).map((l) => (l.startsWith('f ') ? l.replace(/\/\d+/g, '') : l));
+      expect(strip(lines)).toEqual(plain.split('\n'));
+      // charts: faces joined by shared vt; one per patch
+      const parent = vt.map((_, i) => i);
+      const find = (x: number): number => (parent[x] === x ? x : (parent[x] = find(parent[x]!)));
+      for (const f of faces) for (const c of f.slice(1)) parent[find(c[1]! - 1)] = find(f[0]![1]! - 1);
+      const charts = new Map<number, { box: number[]; pos: number; neg: number }>();
+      for (const f of faces) {
+        const [a, b, c] = f.map((x) => vt[x[1]! - 1]!) as [number[], number[], number[]];
+        const area = (b[0]! - a[0]!) * (c[1]! - a[1]!) - (c[0]! - a[0]!) * (b[1]! - a[1]!);
+        const key = find(f[0]![1]! - 1);
+        const ch = charts.get(key) ?? { box: [Infinity, Infinity, -Infinity, -Infinity], pos: 0, neg: 0 };
+        for (const p of [a, b, c]) {
+          ch.box = [Math.min(ch.box[0]!, p[0]!), Math.min(ch.box[1]!, p[1]!), Math.max(ch.box[2]!, p[0]!), Math.max(ch.box[3]!, p[1]!)];
+        }
+        if (area > 0) ch.pos++;
+        else ch.neg++;
+        charts.set(key, ch);
+      }
+      expect(charts.size).toBe(Number(await page.textContent('[data-testid="q-out-report.patches"]')));
+      const list = [...charts.values()];
+      for (const ch of list) expect(ch.neg === 0 || ch.pos === 0, `chart orientation ${ch.pos} ccw / ${ch.neg} cw`).toBe(true);
+      console.log(`UV atlas: ${vt.length} vt, ${list.length} charts, orientation ${list.filter((c) => c.neg === 0).length} ccw / ${list.filter((c) => c.pos === 0).length} cw`);
+      for (let i = 0; i < list.length; ++i) {
+        for (let j = i + 1; j < list.length; ++j) {
+          const p = list[i]!.box, q = list[j]!.box;
+          const overlap = p[0]! < q[2]! && q[0]! < p[2]! && p[1]! < q[3]! && q[1]! < p[3]!;
+          expect(overlap, `charts ${i} and ${j} overlap: ${p} / ${q}`).toBe(false);
+        }
+      }
     });
 
     it('the remesh of fandisk has min angle ≥ 30° away from the exempt input corners (fandisk has one of 19.4°)', async () => {
@@ -175,23 +439,19 @@ describe('demo page in headless Chromium', () => {
     });
 
     it('the main thread is never blocked > 100 ms during the remesh', async () => {
-      // The rAF probe measures every gap between frames while the worker remeshes, three times:
-      // the first remesh (right after the Cancel test, in a fresh worker) and two more. Every one
-      // must stay under 100 ms. With the software GL here, anything that resizes or redraws a
-      // WebGL view during the remesh stalls the main thread on the starved GPU process (the
-      // first remesh's 130-415 ms gaps were the views resized by the cleared 'cancelled' notice).
-      const lastRemesh = () => page.evaluate(() => (window as unknown as { conformeshPage: { lastRemesh: Record<string, number> } }).conformeshPage.lastRemesh);
-      const runs = [await lastRemesh()];
-      for (let i = 0; i < 2; ++i) {
-        await page.click('[data-testid=remesh]');
-        expect(await waitState(['remeshed', 'error'], 100_000)).toBe('remeshed');
-        runs.push(await lastRemesh());
-      }
-      const gaps = runs.map((r) => r.maxFrameGapMs!);
-      console.log(
-        `max frame gap during the remesh, three runs: ${runs.map((r) => `${r.maxFrameGapMs!.toFixed(1)} ms (ending ${r.maxFrameGapEndMs!.toFixed(0)} ms into a ${(r.seconds! * 1000).toFixed(0)} ms remesh, ${r.frames} frames)`).join(', ')}`,
-      );
-      expect(Math.max(...gaps)).toBeLessThan(100);
+      // The test's own rAF probe measures every gap between frames from the click on Remesh until
+      // the result arrives in the page (the gap still open then included), three times: the first
+      // remesh (right after the Cancel test, in a fresh worker) and two more. Every one must stay
+      // under 100 ms. With the software GL here, anything that resizes or redraws a WebGL view
+      // during the remesh stalls the main thread on the starved GPU process (the first remesh's
+      // 130-415 ms gaps were the views resized by the cleared 'cancelled' notice).
+      // The gaps while the result is applied (views rebuilt and redrawn, one per frame) are only
+      // reported: here each frame that shows a rebuilt view waits for SwiftShader to draw it
+      // (GLES2::ReadPixels in the commit, 95-150 ms in a Chrome trace): the first remesh of a
+      // page had 136-221 ms gaps there, runs 2-3 67-121 ms at most (3 runs of this file).
+      for (let i = 0; i < 2; ++i) timings.push(await remeshWithProbe());
+      timings.forEach((t, i) => console.log(`remesh run ${i + 1}: ${describeTiming(t)}`));
+      expect(Math.max(...timings.map((t) => t.remeshMaxGap))).toBeLessThan(100);
     });
 
     it('the flattened-domain view draws every patch after a remesh', async () => {
@@ -221,6 +481,33 @@ describe('demo page in headless Chromium', () => {
     expect(await page.textContent('[data-testid=notice]')).toMatch(/Topology findings/);
   });
 
+  it('a curved disk gets a flatten preview coloured by its conformal factor', async () => {
+    // a paraboloid cap (one boundary loop, not developable: u varies), flattened on loading
+    const n = 12;
+    const lines: string[] = [];
+    for (let j = 0; j <= n; ++j) {
+      for (let i = 0; i <= n; ++i) {
+        const x = -1 + (2 * i) / n, y = -1 + (2 * j) / n;
+        lines.push(`v ${x} ${y} ${0.6 * (x * x + y * y)}`);
+      }
+    }
+    const at = (i: number, j: number) => j * (n + 1) + i + 1;
+    for (let j = 0; j < n; ++j) {
+      for (let i = 0; i < n; ++i) lines.push(`f ${at(i, j)} ${at(i + 1, j)} ${at(i + 1, j + 1)}`, `f ${at(i, j)} ${at(i + 1, j + 1)} ${at(i, j + 1)}`);
+    }
+    await page.setInputFiles('#file-input', { name: 'cap.obj', mimeType: 'text/plain', buffer: Buffer.from(lines.join('\n')) });
+    expect(await waitState(['loaded', 'error'], 30_000)).toBe('loaded');
+    await page.waitForFunction(() => /conformal factor/.test(document.querySelector('#legend-flat')?.textContent ?? ''), undefined, { timeout: 30_000 });
+    const legend = (await page.textContent('#legend-flat')) ?? '';
+    const m = /u, (-?[0-9.]+) \(dark\) … (-?[0-9.]+) \(yellow\)/.exec(legend);
+    expect(m, legend).not.toBeNull();
+    expect(Number(m![2]) - Number(m![1]), 'range of u').toBeGreaterThan(0.05);
+    const s = await canvasStats('canvas-flat', 'cap-flatten-preview');
+    expect(s.variance).toBeGreaterThan(20);
+    expect(s.nonBackground).toBeGreaterThan(0.05);
+    expect(await errorsShown()).toEqual([]);
+  });
+
   it('shows a readable error, with its code and what to do, for a corrupt file', async () => {
     await page.setInputFiles('#file-input', {
       name: 'corrupt.off',
@@ -240,6 +527,30 @@ describe('demo page in headless Chromium', () => {
     const s = await canvasStats('canvas-input', 'input-after-error');
     expect(s.variance).toBeGreaterThan(20);
     expect(pageErrors).toEqual([]);
+  });
+});
+
+describe('page helpers', () => {
+  it('uniqueEdges lists every edge of a triangle list once', () => {
+    // two triangles sharing the edge 1-2, and a third on its own
+    const e = uniqueEdges(Uint32Array.of(0, 1, 2, 2, 1, 3, 4, 5, 6), 7);
+    const pairs = [...Array(e.length / 2).keys()].map((i) => [e[2 * i]!, e[2 * i + 1]!].sort().join('-')).sort();
+    expect(pairs).toEqual(['0-1', '0-2', '1-2', '1-3', '2-3', '4-5', '4-6', '5-6']);
+  });
+
+  it('packBoxes never overlaps two boxes', () => {
+    const boxes: Box2[] = [];
+    for (let i = 0; i < 40; ++i) {
+      const x = Math.sin(i) * 3, y = Math.cos(3 * i) * 2, w = 0.2 + (i % 7) * 0.3, h = 0.1 + (i % 5) * 0.45;
+      boxes.push([x, y, x + w, y + h]);
+    }
+    const moved = packBoxes(boxes).map(({ dx, dy }, i) => [boxes[i]![0] + dx, boxes[i]![1] + dy, boxes[i]![2] + dx, boxes[i]![3] + dy]);
+    for (let i = 0; i < moved.length; ++i) {
+      for (let j = i + 1; j < moved.length; ++j) {
+        const p = moved[i]!, q = moved[j]!;
+        expect(p[0]! < q[2]! && q[0]! < p[2]! && p[1]! < q[3]! && q[1]! < p[3]!, `boxes ${i}, ${j}`).toBe(false);
+      }
+    }
   });
 });
 

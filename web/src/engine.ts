@@ -27,10 +27,46 @@ export interface Mesh3 {
 /** One patch of the flattened domain (planar coordinates are per patch). */
 export interface FlatPatch {
   id: number;
-  /** The input layout: planar positions (2·n) and triangles of the flattened input patch. */
-  layout?: { uv: Float64Array; triangles: Uint32Array; factor?: Float64Array };
-  /** The refined planar mesh (Delaunay refinement output), if the library returned it. */
-  refined?: { uv: Float64Array; triangles: Uint32Array; factor?: Float64Array };
+  /**
+   * The input layout: planar positions (2·n) and triangles of the flattened input patch, the log
+   * scale factor u per vertex, and the input triangle each layout triangle lies in (several when
+   * the library split input triangles before segmenting: mesh/precondition.h).
+   */
+  layout?: { uv: Float64Array; triangles: Uint32Array; factor?: Float64Array; inputFace?: Uint32Array };
+  /**
+   * The refined planar mesh (Delaunay refinement output): its triangles are the patch's output
+   * triangles in output order, and outputVertex the output vertex of each planar vertex.
+   */
+  refined?: { uv: Float64Array; triangles: Uint32Array; factor?: Float64Array; outputVertex?: Uint32Array };
+}
+
+/** Patch id of an input triangle that no patch covers (e.g. dropped by the library's repair). */
+export const NO_PATCH = 0xffffffff;
+
+/**
+ * The library's patch of every input triangle, from its patches' layout triangles. A triangle
+ * split by the preconditioning may have pieces in several patches (a cut along a new edge): it
+ * goes to the patch holding most of its pieces (ties: the lower id). NO_PATCH where none does.
+ */
+export function patchOfInputFace(patches: FlatPatch[], faceCount: number): Uint32Array {
+  const out = new Uint32Array(faceCount).fill(NO_PATCH);
+  const pieces = new Uint32Array(faceCount);
+  // patches in id order, so that a later patch takes a face only with strictly more pieces
+  const byId = [...patches].sort((a, b) => a.id - b.id);
+  const count = new Map<number, number>();
+  for (const p of byId) {
+    const faces = p.layout?.inputFace;
+    if (!faces) continue;
+    count.clear();
+    for (const f of faces) if (f < faceCount) count.set(f, (count.get(f) ?? 0) + 1);
+    for (const [f, n] of count) {
+      if (out[f] === NO_PATCH || n > pieces[f]!) {
+        out[f] = p.id;
+        pieces[f] = n;
+      }
+    }
+  }
+  return out;
 }
 
 export interface RemeshOutput {
@@ -78,9 +114,13 @@ function planar(o: unknown): FlatPatch['layout'] {
   const uv = f64(pick(r, 'uv', 'uvs', 'planar', 'positions2d', 'positions'));
   const triangles = u32(pick(r, 'triangles', 'faces'));
   if (!uv || !triangles) return undefined;
-  const out: NonNullable<FlatPatch['layout']> = { uv, triangles };
+  const out: NonNullable<FlatPatch['refined']> & NonNullable<FlatPatch['layout']> = { uv, triangles };
   const factor = f64(pick(r, 'factor', 'u', 'conformalFactor', 'scale'));
   if (factor) out.factor = factor;
+  const inputFace = u32(r.inputFace);
+  if (inputFace) out.inputFace = inputFace;
+  const outputVertex = u32(r.outputVertex);
+  if (outputVertex) out.outputVertex = outputVertex;
   return out;
 }
 
@@ -193,6 +233,7 @@ export class Engine {
     if (pot) out.patchOfTriangle = pot;
     const ipf = u32(pick(raw, 'inputPatchOfFace', 'inputFacePatch', 'segmentation'));
     if (ipf) out.inputPatchOfFace = ipf;
+    else if (out.patches.some((p) => p.layout?.inputFace)) out.inputPatchOfFace = patchOfInputFace(out.patches, mesh.triangles.length / 3);
     const fe = u32(pick(raw, 'featureEdges', 'inputFeatureEdges'));
     if (fe) out.inputFeatureEdges = fe;
     return out;
@@ -203,7 +244,8 @@ export class Engine {
     const fn = (this.remesher as unknown as Loose).flatten as (m: MeshLike, o: unknown, c: unknown) => Promise<unknown>;
     const raw = (await fn.call(this.remesher, mesh, { boundary: libraryBoundary(params.boundary) }, { signal })) as Loose;
     // one patch (flatten works on a disk): uv and u per input vertex, over the input triangles
-    const list = (pick(raw, 'patches') as unknown[] | undefined) ?? [{ triangles: mesh.triangles, ...raw }];
+    // (raw.layout is the intrinsic triangulation in 3D coordinates, without u: not this)
+    const list = (pick(raw, 'patches') as unknown[] | undefined) ?? [{ uv: raw.uv, factor: raw.u, triangles: mesh.triangles }];
     const out: FlattenOutput = { patches: patchesOf(list) };
     const ipf = u32(pick(raw, 'patchOfFace', 'inputPatchOfFace', 'facePatch'));
     if (ipf) out.inputPatchOfFace = ipf;

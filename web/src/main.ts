@@ -3,18 +3,21 @@
 import GUI from 'lil-gui';
 import type { LineSegments, Mesh } from 'three';
 import type { MeshInfo } from 'conformesh';
-import { Engine, type FlatPatch, type Mesh3, type Params, type RemeshOutput } from './engine.ts';
+import { Engine, NO_PATCH, type FlatPatch, type Mesh3, type Params, type RemeshOutput } from './engine.ts';
+import { objWithUvs, uvAtlas, type UvAtlas } from './atlas.ts';
 import { clearError, showError } from './errors.ts';
 import { Analyzer } from './analysis.ts';
 import { minAnglePerTriangle, type AngleStats, type Bounds, type FeaturePreview } from './geometry.ts';
 import { drawHistogram } from './histogram.ts';
 import { mountingPlateOff } from './plate.ts';
 import { FrameProbe } from './probe.ts';
+import { STAGE_BARS, StageProgress, type BarUpdate } from './stages.ts';
 import {
   NEUTRAL,
   edgeLines,
   faceColoredMesh,
   flatScene,
+  materialSamples,
   minAngleColor,
   paintFaces,
   paintFlat,
@@ -49,6 +52,8 @@ interface Input {
 }
 interface Output {
   result: RemeshOutput;
+  /** The UV atlas of the OBJ export (undefined: the result has no refined patches). */
+  atlas: UvAtlas | undefined;
   angles: Float64Array;
   minAngles: Float64Array;
   stats: AngleStats;
@@ -62,7 +67,12 @@ let selected: number | undefined;
 let running: AbortController | undefined;
 let loadSeq = 0;
 const lastLoad = { analysisMs: NaN, buildMs: NaN, firstFrameMs: NaN };
-const lastRemesh = { maxFrameGapMs: NaN, maxFrameGapEndMs: NaN, frames: 0, seconds: NaN, applyMs: NaN };
+/** The last remesh: the page probe's worst frame gap, and performance.now() at the click, the result's arrival and the end of its application. */
+const lastRemesh = {
+  maxFrameGapMs: NaN, maxFrameGapEndMs: NaN, frames: 0, seconds: NaN, applyMs: NaN, startAt: NaN, resultAt: NaN, appliedAt: NaN,
+  /** Main-thread time of each step of the result's application (ms). */
+  applySteps: {} as Record<string, number>,
+};
 
 const params: Params = { minAngle: 30, edgeLength: 0.02, featureAngle: 40, chordTolerance: 0.001, boundary: 'free' };
 const toggles = { features: true, patches: true, inputWire: false, layout: true, refined: true, remeshWire: true };
@@ -92,6 +102,9 @@ const inputView = new Viewport($('[data-testid=canvas-input]'), '3d');
 const flatView = new Viewport($('[data-testid=canvas-flat]'), '2d');
 const remeshView = new Viewport($('[data-testid=canvas-remesh]'), '3d');
 const views = [inputView, flatView, remeshView];
+for (const v of views) {
+  v.warmUp(materialSamples(v.mode)).catch((e) => showError(errorBox, e, 'compiling the views\u2019 shaders'));
+}
 
 let inputMesh: Mesh | undefined;
 let inputFeatures: LineSegments | undefined;
@@ -121,11 +134,23 @@ function patchOfFace(): Uint32Array | undefined {
   return libraryPatchOfFace ?? input?.preview.patchOfFace;
 }
 
+/** The patch of input face f (undefined: none, e.g. a face the library's repair dropped). */
+function inputPatch(f: number): number | undefined {
+  const p = patchOfFace()?.[f];
+  return p === undefined || p === NO_PATCH ? undefined : p;
+}
+
 function featureEdges(): Uint32Array | undefined {
   return output?.result.inputFeatureEdges ?? input?.preview.featureEdges;
 }
 
 function legend(): void {
+  legendText();
+  // a legend is clamped to three lines: the whole text on hover
+  for (const id of ['#legend-input', '#legend-flat', '#legend-remesh']) $(id).title = $(id).textContent ?? '';
+}
+
+function legendText(): void {
   const li = $('#legend-input');
   const lf = $('#legend-flat');
   const lr = $('#legend-remesh');
@@ -136,23 +161,31 @@ function legend(): void {
     return;
   }
   const pid = patchOfFace();
-  const source = libraryPatchOfFace ? 'library segmentation' : `preview: regions between edges sharper than ${params.featureAngle}°`;
+  const source = libraryPatchOfFace
+    ? 'the library\u2019s segmentation, as in views 2 and 3'
+    : `preview: regions between edges sharper than ${params.featureAngle}° (Remesh shows the library\u2019s patches)`;
   li.textContent = `${input.name} · ${input.mesh.triangles.length / 3} triangles · orange: feature curves · colours: patches (${source})` +
     (selected !== undefined && pid ? ` · selected patch ${selected}` : '');
   if (flat) {
     const [a, b] = flat.factorRange;
-    lf.textContent = `${flat.fills.length} patches · fill: conformal factor u, ${a.toFixed(2)} (dark) … ${b.toFixed(2)} (yellow) · white: input layout · orange: refined mesh`;
+    const fill = !flat.hasFactor
+      ? 'fill: patch colours'
+      : b - a > 1e-9
+        ? `fill: conformal factor u, ${a.toFixed(2)} (dark) … ${b.toFixed(2)} (yellow)`
+        : `fill: conformal factor u = ${a.toFixed(2)} everywhere (the map is an isometry: the patch is flat)`;
+    lf.textContent = `${flat.fills.length} patches · ${fill} · white: input layout · orange: refined mesh` +
+      (selected !== undefined ? ` · selected patch ${selected}` : '');
   } else lf.textContent = '';
   lr.textContent = output
-    ? `${output.result.mesh.triangles.length / 3} triangles · triangle min angle: red < 20°, orange < 30°, green ≥ 30° (brighter toward 60°)`
+    ? `${output.result.mesh.triangles.length / 3} triangles · triangle min angle: red < 20°, orange < 30°, green ≥ 30° (brighter toward 60°)` +
+      (selected !== undefined && output.result.patchOfTriangle ? ` · selected patch ${selected}` : '')
     : '';
 }
 
 function paintInput(): void {
   if (!input || !inputMesh) return;
-  const pid = patchOfFace();
   paintFaces(inputMesh, (f) => {
-    const p = pid?.[f];
+    const p = inputPatch(f);
     const base = toggles.patches && p !== undefined ? patchColor(p) : NEUTRAL;
     return selectionShade(base, p, selected);
   });
@@ -176,6 +209,12 @@ function buildInput(frame: boolean): void {
   paintInput();
   if (frame) inputView.frame([inputMesh]);
   inputView.requestRender();
+}
+
+/** After a remesh: the input mesh stays, its patch colours change (rebuilt only when the result brings its own feature curves). */
+function refreshInput(): void {
+  if (!inputMesh || output?.result.inputFeatureEdges) buildInput(false);
+  else paintInput();
 }
 
 /** The input wireframe is built on first use (it costs as much as the mesh itself). */
@@ -220,8 +259,7 @@ function buildFlat(): void {
 function paintRemesh(): void {
   if (!output || !remeshMesh) return;
   const pot = output.result.patchOfTriangle;
-  const linked = pot && libraryPatchOfFace ? pot : undefined;
-  paintFaces(remeshMesh, (f) => selectionShade(minAngleColor(output!.minAngles[f]!), linked?.[f], selected));
+  paintFaces(remeshMesh, (f) => selectionShade(minAngleColor(output!.minAngles[f]!), pot?.[f], selected));
   remeshView.requestRender();
 }
 
@@ -271,12 +309,48 @@ function select(patch: number | undefined): void {
   legend();
 }
 
-inputView.onPick = (hit) => select(hit ? patchOfFace()?.[hit.faceIndex] : undefined);
+inputView.onPick = (hit) => select(hit ? inputPatch(hit.faceIndex) : undefined);
 flatView.onPick = (hit) => select(hit ? (hit.object.userData.patch as number) : undefined);
 remeshView.onPick = (hit) => {
   const pot = output?.result.patchOfTriangle;
   select(hit && pot ? pot[hit.faceIndex] : undefined);
 };
+
+/**
+ * What each view highlights (for the end-to-end test): the input faces and remesh triangles drawn
+ * bright (a dimmed colour is 0.35 x its base, so no channel exceeds 0.35; a highlighted one is
+ * 0.35 + 0.65 x base, above 0.5 for every patch and angle colour), the flattened patches drawn at
+ * full colour; and, from the library's result itself, the input faces and output triangles of
+ * the selected patch.
+ */
+function selectionState() {
+  const brightFaces = (m: Mesh | undefined) => {
+    const out: number[] = [];
+    if (!m) return out;
+    const c = m.geometry.getAttribute('color').array as Float32Array;
+    for (let f = 0; 9 * f < c.length; ++f) if (Math.max(c[9 * f]!, c[9 * f + 1]!, c[9 * f + 2]!) > 0.5) out.push(f);
+    return out;
+  };
+  const flatBright = (flat?.fills ?? [])
+    .filter((fill) => {
+      const c = fill.geometry.getAttribute('color').array as Float32Array;
+      const base = fill.geometry.userData.baseColors as Float32Array;
+      return c.every((x, i) => x === base[i]);
+    })
+    .map((fill) => fill.userData.patch as number);
+  const patch = selected === undefined ? undefined : output?.result.patches.find((p) => p.id === selected);
+  const pot = output?.result.patchOfTriangle;
+  return {
+    selected,
+    input: brightFaces(inputMesh),
+    flat: flatBright,
+    remesh: brightFaces(remeshMesh),
+    library: {
+      inputFaces: patch?.layout?.inputFace ? [...new Set(patch.layout.inputFace)].sort((a, b) => a - b) : undefined,
+      triangles: pot && selected !== undefined ? [...pot.keys()].filter((t) => pot[t] === selected) : undefined,
+    },
+  };
+}
 
 // ---------------------------------------------------------------- quality panel
 const fmt = (x: number | undefined, digits = 2, unit = '') => (x === undefined || !Number.isFinite(x) ? '—' : `${x.toFixed(digits)}${unit}`);
@@ -362,13 +436,16 @@ function histogram(): void {
 }
 
 // ---------------------------------------------------------------- progress
-const STAGES = ['validate', 'segment', 'curve-mesh', 'flatten', 'refine', 'lift', 'stitch', 'report'];
 const progressList = $('#progress');
+const stageProgress = new StageProgress();
+/** The progress events of the last remesh as received, and the bar values shown (for the tests). */
+const progressLog: { events: { stage: string; fraction: number }[]; bars: BarUpdate[] } = { events: [], bars: [] };
 const bars = new Map<string, { li: HTMLLIElement; bar: HTMLDivElement; label: HTMLSpanElement }>();
-for (const s of STAGES) {
+for (const { stage, title } of STAGE_BARS) {
   const li = document.createElement('li');
+  li.title = title;
   const name = document.createElement('span');
-  name.textContent = s;
+  name.textContent = stage;
   const outer = document.createElement('div');
   outer.className = 'bar';
   const bar = document.createElement('div');
@@ -376,38 +453,42 @@ for (const s of STAGES) {
   const label = document.createElement('span');
   label.textContent = '';
   li.append(name, outer, label);
-  li.dataset.stage = s;
+  li.dataset.stage = stage;
   progressList.append(li);
-  bars.set(s, { li, bar, label });
+  bars.set(stage, { li, bar, label });
 }
 function resetProgress(): void {
+  stageProgress.reset();
+  progressLog.events = [];
+  progressLog.bars = [];
   for (const { li, bar, label } of bars.values()) {
     li.className = '';
     bar.style.width = '0';
     label.textContent = '';
   }
 }
+/** The result is in: every stage has ended (the bars not yet full are completed). */
+function finishProgress(): void {
+  for (const u of stageProgress.update(STAGE_BARS[STAGE_BARS.length - 1]!.stage, 1)) showBar(u);
+}
+function showBar(u: BarUpdate): void {
+  progressLog.bars.push(u);
+  const b = bars.get(u.stage)!;
+  b.bar.style.width = `${(100 * u.value).toFixed(1)}%`;
+  b.label.textContent = `${Math.floor(100 * u.value)}%`;
+  b.li.className = u.value >= 1 ? 'done' : '';
+}
+/** A library progress event (fraction: of the whole call) shown as the stage's own progress. */
 function setProgress(stage: string, fraction: number): void {
-  const idx = STAGES.indexOf(stage);
-  if (idx < 0) return;
-  STAGES.forEach((s, k) => {
-    const b = bars.get(s)!;
-    if (k < idx) {
-      b.li.className = 'done';
-      b.bar.style.width = '100%';
-      b.label.textContent = '100%';
-    } else if (k === idx) {
-      b.bar.style.width = `${(100 * fraction).toFixed(1)}%`;
-      b.label.textContent = `${Math.round(100 * fraction)}%`;
-      if (fraction >= 1) b.li.className = 'done';
-    }
-  });
+  progressLog.events.push({ stage, fraction });
+  for (const u of stageProgress.update(stage, fraction)) showBar(u);
 }
 
 // ---------------------------------------------------------------- loading
 function notice(text: string | undefined): void {
   noticeBox.hidden = !text;
   noticeBox.textContent = text ?? '';
+  noticeBox.title = text ?? ''; // one line shown: the whole text on hover
 }
 
 function updateButtons(): void {
@@ -417,8 +498,8 @@ function updateButtons(): void {
   $<HTMLButtonElement>('#cancel-button').disabled = !running;
   for (const b of document.querySelectorAll<HTMLButtonElement>('#export button')) {
     const f = b.dataset.format;
-    b.disabled = !output || (f === 'obj-uv' && !output.result.mesh.uvs);
-    b.title = f === 'obj-uv' && output && !output.result.mesh.uvs ? 'this build\u2019s remesh returns no conformal UVs' : '';
+    b.disabled = !output || (f === 'obj-uv' && !output.atlas);
+    b.title = f === 'obj-uv' && output && !output.atlas ? 'this remesh result carries no planar patches to make UVs from' : '';
   }
 }
 
@@ -572,36 +653,59 @@ async function remesh(): Promise<void> {
   const t0 = performance.now();
   try {
     const result = await engine.remesh(input.mesh, params, input.bounds.diagonal, (p) => setProgress(p.stage, p.fraction), ac.signal);
-    const seconds = (performance.now() - t0) / 1000;
+    const resultAt = performance.now();
+    const seconds = (resultAt - t0) / 1000;
     const gap = probe.read();
     if (seq !== loadSeq) return;
+    finishProgress();
     const a = await analyzer.analyze(result.mesh, { angles: true });
     if (seq !== loadSeq) return;
     const t1 = performance.now();
-    output = { result, angles: a.angles!, minAngles: minAnglePerTriangle(a.angles!), stats: a.stats!, seconds };
+    let atlas: UvAtlas | undefined;
+    try {
+      atlas = uvAtlas(result.mesh, result.patches, result.patchOfTriangle);
+    } catch (e) {
+      // the remesh stands; only the UV export is off (and the page says why)
+      showError(errorBox, e, 'building the UV atlas of the remesh');
+    }
+    output = { result, atlas, angles: a.angles!, minAngles: minAnglePerTriangle(a.angles!), stats: a.stats!, seconds };
     if (result.inputPatchOfFace) libraryPatchOfFace = result.inputPatchOfFace;
     selected = undefined;
-    STAGES.forEach((s) => setProgress(s, 1));
-    // Applying the result is split into tasks, so the page keeps drawing frames in between (the
-    // main thread is never blocked for long, even with a software GL).
+    // Applying the result is split into tasks, one view per frame, so the page keeps drawing
+    // frames in between (the main thread is never blocked for long, even with a software GL).
     const nextTask = () => new Promise<void>((resolve) => setTimeout(resolve, 0));
+    const applySteps: Record<string, number> = {};
+    const step = (name: string, f: () => void) => {
+      const t = performance.now();
+      f();
+      applySteps[name] = performance.now() - t;
+    };
+    // one view per frame: build, let the frame with its render go out, then the next
+    const drawn = async (v: Viewport) => {
+      await v.drawn();
+      await nextTask();
+    };
     holdLoadPanel(false);
-    buildInput(false);
-    await nextTask();
+    step('input', refreshInput);
+    await drawn(inputView);
     if (seq !== loadSeq) return;
-    buildFlat();
-    await nextTask();
+    step('flat', buildFlat);
+    await drawn(flatView);
     if (seq !== loadSeq) return;
-    buildRemesh();
-    await nextTask();
+    step('remesh', buildRemesh);
+    await drawn(remeshView);
     if (seq !== loadSeq) return;
-    if (toggles.remeshWire) ensureRemeshWire();
-    await nextTask();
+    step('remeshWire', () => { if (toggles.remeshWire) ensureRemeshWire(); });
+    await drawn(remeshView);
     if (seq !== loadSeq) return;
-    qualityTable();
-    histogram();
-    legend();
-    Object.assign(lastRemesh, { maxFrameGapMs: gap.maxGap, maxFrameGapEndMs: gap.maxGapAt - t0, frames: gap.frames, seconds, applyMs: performance.now() - t1 });
+    step('panels', () => { qualityTable(); histogram(); legend(); });
+    await Promise.all(views.map((v) => v.drawn()));
+    if (seq !== loadSeq) return;
+    const appliedAt = performance.now();
+    Object.assign(lastRemesh, {
+      maxFrameGapMs: gap.maxGap, maxFrameGapEndMs: gap.maxGapAt - t0, frames: gap.frames, seconds,
+      applyMs: appliedAt - t1, startAt: t0, resultAt, appliedAt, applySteps,
+    });
     setState('remeshed');
   } catch (e) {
     if (seq !== loadSeq) return;
@@ -639,8 +743,9 @@ async function exportAs(format: string): Promise<void> {
   const m = output.result.mesh;
   try {
     if (format === 'obj-uv') {
-      if (!m.uvs) return;
-      download(await engine.write({ positions: m.positions, triangles: m.triangles, uvs: m.uvs }, 'obj', true), `${base}-uv.obj`);
+      if (!output.atlas) return;
+      const plain = new TextDecoder().decode(await engine.write({ positions: m.positions, triangles: m.triangles }, 'obj'));
+      download(new TextEncoder().encode(objWithUvs(plain, m, output.atlas)), `${base}-uv.obj`);
     } else {
       const f = format as 'obj' | 'stl' | 'ply';
       download(await engine.write({ positions: m.positions, triangles: m.triangles }, f), `${base}.${f}`);
@@ -744,8 +849,10 @@ window.conformeshPage = {
   lastRemesh,
   lastLoad,
   capabilities: { remesh: engine.canRemesh, flatten: engine.canFlatten },
+  progressLog,
   renderAll: () => views.forEach((v) => v.renderNow()),
   loadSample,
+  selectionState,
 };
 
 buildFlat();

@@ -10,11 +10,12 @@ import {
   Mesh,
   MeshBasicMaterial,
   MeshStandardMaterial,
-  WireframeGeometry,
+  type Object3D,
 } from 'three';
 import { toBufferGeometry } from 'conformesh/three';
 import type { FlatPatch, Mesh3 } from './engine.ts';
 import { minAngleColor, patchColor, ramp, type RGB } from './colors.ts';
+import { packBoxes, patchBox, type Box2 } from './atlas.ts';
 
 /** A non-indexed triangle mesh (one colour per triangle) with flat shading. */
 export function faceColoredMesh(mesh: Mesh3): Mesh {
@@ -53,15 +54,35 @@ export function paintFaces(mesh: Mesh, colorOf: (f: number) => RGB): void {
   attr.needsUpdate = true;
 }
 
-export function wireframe(mesh: Mesh3, color: number, opacity: number): LineSegments {
-  const g = toBufferGeometry({ positions: mesh.positions, triangles: mesh.triangles });
-  const lines = new LineSegments(new WireframeGeometry(g), new LineBasicMaterial({ color, transparent: opacity < 1, opacity }));
-  g.dispose();
-  return lines;
+/**
+ * Every edge of a triangle list once, as vertex pairs (2 per edge). Sorting numeric keys keeps
+ * this a few milliseconds for 10^5 triangles (three's WireframeGeometry builds a string per edge
+ * and took 30-130 ms on a 7k-triangle remesh).
+ */
+export function uniqueEdges(triangles: Uint32Array, vertexCount: number): Uint32Array {
+  const keys = new Float64Array(triangles.length);
+  for (let f = 0; f < triangles.length; f += 3) {
+    for (let k = 0; k < 3; ++k) {
+      const a = triangles[f + k]!, b = triangles[f + (k === 2 ? 0 : k + 1)]!;
+      keys[f + k] = a < b ? a * vertexCount + b : b * vertexCount + a;
+    }
+  }
+  keys.sort();
+  const out: number[] = [];
+  for (let i = 0; i < keys.length; ++i) {
+    if (i > 0 && keys[i] === keys[i - 1]) continue;
+    const a = Math.floor(keys[i]! / vertexCount);
+    out.push(a, keys[i]! - a * vertexCount);
+  }
+  return Uint32Array.from(out);
 }
 
-/** Line segments between vertex pairs (2·n indices). */
-export function edgeLines(positions: Float64Array, pairs: Uint32Array, color: number): LineSegments {
+export function wireframe(mesh: Mesh3, color: number, opacity: number): LineSegments {
+  return edgeLines(mesh.positions, uniqueEdges(mesh.triangles, mesh.positions.length / 3), color, opacity);
+}
+
+/** Line segments between vertex pairs (2·n indices) of positions (3 per vertex). */
+export function edgeLines(positions: ArrayLike<number>, pairs: Uint32Array, color: number, opacity = 1): LineSegments {
   const p = new Float32Array(pairs.length * 3);
   for (let i = 0; i < pairs.length; ++i) {
     const v = pairs[i]!;
@@ -71,7 +92,23 @@ export function edgeLines(positions: Float64Array, pairs: Uint32Array, color: nu
   }
   const g = new BufferGeometry();
   g.setAttribute('position', new BufferAttribute(p, 3));
-  return new LineSegments(g, new LineBasicMaterial({ color }));
+  return new LineSegments(g, new LineBasicMaterial({ color, transparent: opacity < 1, opacity }));
+}
+
+/**
+ * One small object of every material kind a view draws (same builders, so the same shader
+ * programs): a viewport compiles them at start-up and keeps them, so that a remesh's new scenes
+ * never wait for a shader compile (with a software GL, 250-700 ms per view).
+ */
+export function materialSamples(mode: '3d' | '2d'): Object3D[] {
+  const tri: Mesh3 = { positions: Float64Array.of(0, 0, 0, 1, 0, 0, 0, 1, 0), triangles: Uint32Array.of(0, 1, 2) };
+  if (mode === '3d') return [faceColoredMesh(tri), wireframe(tri, 0, 0.5), edgeLines(tri.positions, Uint32Array.of(0, 1), 0)];
+  const uv = Float64Array.of(0, 0, 1, 0, 0, 1);
+  const scene = flatScene([
+    { id: 0, layout: { uv, triangles: tri.triangles, factor: Float64Array.of(0, 1, 0) }, refined: { uv, triangles: tri.triangles } },
+    { id: 1, layout: { uv, triangles: tri.triangles } },
+  ]);
+  return [...scene.group.children];
 }
 
 /** Colour of an input triangle: its patch (or neutral), brightened when selected, dimmed when another patch is. */
@@ -86,6 +123,8 @@ export { minAngleColor, patchColor };
 
 export interface FlatScene {
   group: Group;
+  /** Whether any patch carries the conformal factor (fills coloured by it, else by patch). */
+  hasFactor: boolean;
   /** Filled meshes, one per patch (pickable; userData.patch is the patch id). */
   fills: Mesh[];
   layoutLines: LineSegments[];
@@ -93,26 +132,26 @@ export interface FlatScene {
   factorRange: [number, number];
 }
 
-function planarGeometry(uv: Float64Array, triangles: Uint32Array, dx: number, dy: number): BufferGeometry {
+/** Planar positions (2 per vertex) moved by (dx, dy), as 3D positions at z = 0. */
+function planarPositions(uv: Float64Array, dx: number, dy: number): Float32Array {
   const n = uv.length / 2;
   const p = new Float32Array(3 * n);
   for (let i = 0; i < n; ++i) {
     p[3 * i] = uv[2 * i]! + dx;
     p[3 * i + 1] = uv[2 * i + 1]! + dy;
   }
+  return p;
+}
+
+function planarGeometry(uv: Float64Array, triangles: Uint32Array, dx: number, dy: number): BufferGeometry {
   const g = new BufferGeometry();
-  g.setAttribute('position', new BufferAttribute(p, 3));
+  g.setAttribute('position', new BufferAttribute(planarPositions(uv, dx, dy), 3));
   g.setIndex(new BufferAttribute(Uint32Array.from(triangles), 1));
   return g;
 }
 
-function box2(uv: Float64Array): [number, number, number, number] {
-  let x0 = Infinity, y0 = Infinity, x1 = -Infinity, y1 = -Infinity;
-  for (let i = 0; i < uv.length; i += 2) {
-    x0 = Math.min(x0, uv[i]!); x1 = Math.max(x1, uv[i]!);
-    y0 = Math.min(y0, uv[i + 1]!); y1 = Math.max(y1, uv[i + 1]!);
-  }
-  return [x0, y0, x1, y1];
+function planarLines(uv: Float64Array, triangles: Uint32Array, dx: number, dy: number, color: number, opacity: number): LineSegments {
+  return edgeLines(planarPositions(uv, dx, dy), uniqueEdges(triangles, uv.length / 2), color, opacity);
 }
 
 /**
@@ -122,41 +161,30 @@ function box2(uv: Float64Array): [number, number, number, number] {
  */
 export function flatScene(patches: FlatPatch[]): FlatScene {
   const group = new Group();
-  const scene: FlatScene = { group, fills: [], layoutLines: [], refinedLines: [], factorRange: [0, 0] };
+  const scene: FlatScene = { group, hasFactor: false, fills: [], layoutLines: [], refinedLines: [], factorRange: [0, 0] };
   const items = patches
-    .map((p) => ({ p, uv: p.layout?.uv ?? p.refined?.uv }))
-    .filter((x): x is { p: FlatPatch; uv: Float64Array } => !!x.uv && x.uv.length >= 6)
-    .map((x) => ({ ...x, box: box2(x.uv) }));
+    .map((p) => ({ p, uv: p.layout?.uv ?? p.refined?.uv, box: patchBox(p) }))
+    .filter((x): x is { p: FlatPatch; uv: Float64Array; box: Box2 } => !!x.uv && x.uv.length >= 6 && !!x.box);
   let fmin = Infinity, fmax = -Infinity;
   for (const { p } of items) {
     const f = p.layout?.factor ?? p.refined?.factor;
     if (f) for (let i = 0; i < f.length; ++i) { fmin = Math.min(fmin, f[i]!); fmax = Math.max(fmax, f[i]!); }
   }
-  scene.factorRange = Number.isFinite(fmin) ? [fmin, fmax] : [0, 0];
-  let area = 0, maxDim = 0;
-  for (const { box } of items) {
-    area += (box[2] - box[0]) * (box[3] - box[1]);
-    maxDim = Math.max(maxDim, box[2] - box[0], box[3] - box[1]);
-  }
-  const gap = 0.06 * Math.sqrt(area / Math.max(1, items.length));
-  const rowWidth = Math.max(maxDim, 1.6 * Math.sqrt(area));
-  const order = [...items].sort((a, b) => b.box[3] - b.box[1] - (a.box[3] - a.box[1]));
-  let x = 0, y = 0, rowH = 0;
+  scene.hasFactor = Number.isFinite(fmin);
+  scene.factorRange = scene.hasFactor ? [fmin, fmax] : [0, 0];
+  // the same packing as the UV atlas of the OBJ export (atlas.ts)
+  const moves = packBoxes(items.map((x) => x.box));
   const span = scene.factorRange[1] - scene.factorRange[0];
-  for (const { p, box } of order) {
-    const w = box[2] - box[0], h = box[3] - box[1];
-    if (x > 0 && x + w > rowWidth) { x = 0; y -= rowH + gap; rowH = 0; }
-    const dx = x - box[0], dy = y - box[3];
-    x += w + gap;
-    rowH = Math.max(rowH, h);
+  for (const [i, { p }] of items.entries()) {
+    const { dx, dy } = moves[i]!;
     const fillSrc = p.layout ?? p.refined!;
     const g = planarGeometry(fillSrc.uv, fillSrc.triangles, dx, dy);
     const n = fillSrc.uv.length / 2;
     const col = new Float32Array(3 * n);
     const base = patchColor(p.id);
-    for (let i = 0; i < n; ++i) {
-      const c = fillSrc.factor ? ramp(span > 0 ? (fillSrc.factor[i]! - scene.factorRange[0]) / span : 0.5) : base;
-      col[3 * i] = c[0]; col[3 * i + 1] = c[1]; col[3 * i + 2] = c[2];
+    for (let v = 0; v < n; ++v) {
+      const c = fillSrc.factor ? ramp(span > 0 ? (fillSrc.factor[v]! - scene.factorRange[0]) / span : 0.5) : base;
+      col[3 * v] = c[0]; col[3 * v + 1] = c[1]; col[3 * v + 2] = c[2];
     }
     g.setAttribute('color', new BufferAttribute(col, 3));
     g.userData.baseColors = col.slice();
@@ -165,17 +193,13 @@ export function flatScene(patches: FlatPatch[]): FlatScene {
     group.add(fill);
     scene.fills.push(fill);
     if (p.layout) {
-      const lg = planarGeometry(p.layout.uv, p.layout.triangles, dx, dy);
-      const l = new LineSegments(new WireframeGeometry(lg), new LineBasicMaterial({ color: 0xffffff, transparent: true, opacity: 0.35 }));
-      lg.dispose();
+      const l = planarLines(p.layout.uv, p.layout.triangles, dx, dy, 0xffffff, 0.35);
       l.userData.patch = p.id;
       group.add(l);
       scene.layoutLines.push(l);
     }
     if (p.refined) {
-      const rg = planarGeometry(p.refined.uv, p.refined.triangles, dx, dy);
-      const l = new LineSegments(new WireframeGeometry(rg), new LineBasicMaterial({ color: 0xff9a3c, transparent: true, opacity: 0.8 }));
-      rg.dispose();
+      const l = planarLines(p.refined.uv, p.refined.triangles, dx, dy, 0xff9a3c, 0.8);
       l.position.z = 0.001;
       l.userData.patch = p.id;
       group.add(l);

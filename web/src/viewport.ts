@@ -32,10 +32,15 @@ export class Viewport {
   pickable: Object3D[] = [];
   onPick: ((hit: PickHit | null) => void) | undefined;
   private pending = false;
+  private waiting: (() => void)[] = [];
+  /** Compiled at start-up and never disposed: their shader programs stay (see warmUp). */
+  private readonly keepers: Object3D[] = [];
   private readonly raycaster = new Raycaster();
 
   constructor(readonly container: HTMLElement, readonly mode: '3d' | '2d') {
-    this.renderer = new WebGLRenderer({ antialias: true });
+    // no multisampling on a software GL: SwiftShader runs the fragment work 4x on the CPU, and a
+    // remeshed view's frame took 100-165 ms with it against 20-70 ms without (fandisk)
+    this.renderer = new WebGLRenderer({ antialias: !softwareGl() });
     this.renderer.setPixelRatio(Math.min(2, window.devicePixelRatio || 1));
     this.renderer.setClearColor(new Color(0x171a20));
     container.appendChild(this.renderer.domElement);
@@ -75,7 +80,37 @@ export class Viewport {
     requestAnimationFrame(() => {
       this.pending = false;
       this.renderer.render(this.scene, this.camera);
+      const done = this.waiting;
+      this.waiting = [];
+      for (const f of done) f();
     });
+  }
+
+  /** Resolves once the requested render is drawn (at once when none is pending). */
+  drawn(): Promise<void> {
+    if (!this.pending) return Promise.resolve();
+    return new Promise((resolve) => this.waiting.push(resolve));
+  }
+
+  /**
+   * Compile the shader programs of `samples` (one object per material kind the view will draw)
+   * and keep the samples: three.js frees a program when the last material using it is disposed,
+   * and each rebuilt scene would compile it again. The programs compile off the main thread
+   * where the browser has KHR_parallel_shader_compile (compileAsync).
+   */
+  async warmUp(samples: Object3D[]): Promise<void> {
+    this.keepers.push(...samples);
+    const holder = new Scene();
+    for (const o of samples) holder.add(o);
+    // with the view's own lights (targetScene): the programs depend on them
+    await this.renderer.compileAsync(holder, this.camera, this.scene);
+    // and draw them once (in front of the start-up camera): a software GL (SwiftShader) compiles
+    // its own rasterizer routines per draw state at the first draw. The samples are gone before
+    // the canvas is shown (same task).
+    for (const o of samples) this.scene.add(o);
+    this.renderer.render(this.scene, this.camera);
+    for (const o of samples) this.scene.remove(o);
+    this.renderer.render(this.scene, this.camera);
   }
 
   /** Render now (used before screenshots and after loading). */
@@ -157,6 +192,19 @@ export class Viewport {
     this.pickable = [];
     this.requestRender();
   }
+}
+
+let software: boolean | undefined;
+/** Whether WebGL runs on a software rasterizer (SwiftShader, llvmpipe), checked once. */
+export function softwareGl(): boolean {
+  if (software === undefined) {
+    const gl = document.createElement('canvas').getContext('webgl2');
+    const info = gl?.getExtension('WEBGL_debug_renderer_info');
+    const name = gl && info ? String(gl.getParameter(info.UNMASKED_RENDERER_WEBGL)) : '';
+    software = /swiftshader|llvmpipe|softpipe|software/i.test(name);
+    gl?.getExtension('WEBGL_lose_context')?.loseContext();
+  }
+  return software;
 }
 
 export function disposeTree(o: Object3D): void {
