@@ -1104,6 +1104,30 @@ double triangleMinAngle(const MeshBuffers& m, size_t t, double* maxAngle = nullp
   return lo;
 }
 
+//! Whether triangleMinAngle(m, t) < boundDeg, mostly without its atan2s: the corner cosines
+//! u·v / (|u||v|), within a few ulp of the exact ones, decide when they are more than 1e-9 from
+//! cosBound = cos(boundDeg) (|Δcos| ≤ |Δangle|, and the atan2 angles are within a few 1e-16 rad
+//! of the exact ones); a triangle near the bound, or with sides near under- or overflow, is
+//! measured.
+bool minAngleBelow(const MeshBuffers& m, size_t t, double boundDeg, double cosBound) {
+  F::Vec3 p[3];
+  for (int c = 0; c < 3; ++c) {
+    uint32_t v = m.triangles[3 * t + c];
+    p[c] = {m.positions[3 * v], m.positions[3 * v + 1], m.positions[3 * v + 2]};
+  }
+  constexpr double kApart = 1e-9;
+  bool above = true;
+  for (int c = 0; c < 3; ++c) {
+    const F::Vec3 u = p[(c + 1) % 3] - p[c], v = p[(c + 2) % 3] - p[c];
+    const double uu = F::dot(u, u), vv = F::dot(v, v);
+    if (!(uu >= 1e-200 && uu <= 1e200 && vv >= 1e-200 && vv <= 1e200)) return triangleMinAngle(m, t) < boundDeg;
+    const double cosA = F::dot(u, v) / (std::sqrt(uu) * std::sqrt(vv));
+    if (cosA > cosBound + kApart) return true;
+    above = above && cosA < cosBound - kApart;
+  }
+  return above ? false : triangleMinAngle(m, t) < boundDeg;
+}
+
 RemeshResult Pipeline::run(const MeshBuffers& input) {
   RemeshResult res;
   auto t0 = std::chrono::steady_clock::now(), tStart = t0;
@@ -1223,6 +1247,7 @@ RemeshResult Pipeline::run(const MeshBuffers& input) {
   int staleRounds = 0;  // certificate rounds in a row that did not beat the best
   std::vector<std::vector<uint32_t>> bestCurveSamples;
   std::vector<RemeshPatch> bestPatches;
+  const double cosBound = dmath::cos(opt_.minAngleDeg * kPi / 180.0), cosCollapsed = dmath::cos(kCollapsedDeg * kPi / 180.0);
   for (int cert = 0;; ++cert) {
     // Refine every patch that needs it; a refinement that splits a boundary segment adds a
     // curve sample there, which the patches on the other side of that curve must include: they
@@ -1290,9 +1315,8 @@ RemeshResult Pipeline::run(const MeshBuffers& input) {
     // never wins by trading bad triangles for collapsed ones.
     size_t bad = 0, collapsed = 0;
     for (size_t t = 0; t < out.triangleCount(); ++t) {
-      const double a = triangleMinAngle(out, t);
-      if (a < kCollapsedDeg) ++collapsed;
-      if (a < opt_.minAngleDeg && exemptCornerOf(out, t, exemptVertex) == kNone) ++bad;
+      if (minAngleBelow(out, t, kCollapsedDeg, cosCollapsed)) ++collapsed;
+      if (minAngleBelow(out, t, opt_.minAngleDeg, cosBound) && exemptCornerOf(out, t, exemptVertex) == kNone) ++bad;
     }
     // the same three samples meshed as a triangle by two patches (a corner wedge between two
     // curves that both patches border, closed by one triangle on each side): the stitched
@@ -1340,7 +1364,7 @@ RemeshResult Pipeline::run(const MeshBuffers& input) {
       w.needsMesh = true;
     }
     for (size_t t = 0; t < out.triangleCount(); ++t) {
-      if (triangleMinAngle(out, t) >= opt_.minAngleDeg || exemptCornerOf(out, t, exemptVertex) != kNone) continue;
+      if (!minAngleBelow(out, t, opt_.minAngleDeg, cosBound) || exemptCornerOf(out, t, exemptVertex) != kNone) continue;
       PatchWork& w = *work_[triPatch[t]];
       const uint32_t* lt = &w.triangles[3 * (t - firstTri[triPatch[t]])];
       double cx = 0, cy = 0, longest = 0;
@@ -1366,7 +1390,8 @@ RemeshResult Pipeline::run(const MeshBuffers& input) {
   checkOutputCounts(out.vertexCount(), out.triangleCount(), opt_);  // remesh/limits.h
 
   // report
-  auto as = quality::angleStats(out);
+  std::vector<double> triMinRad;  // per triangle, NaN when degenerate
+  auto as = quality::angleStats(out, &triMinRad);
   rep_.triangles = out.triangleCount();
   rep_.vertices = out.vertexCount();
   rep_.minAngle = as.minAngle;
@@ -1402,14 +1427,15 @@ RemeshResult Pipeline::run(const MeshBuffers& input) {
       }
     }
     if (ex) continue;
-    double a = triangleMinAngle(out, t);
+    // the same value as triangleMinAngle (the same atan2s; degrees are monotone in radians)
+    const double a = std::isnan(triMinRad[t]) ? triangleMinAngle(out, t) : triMinRad[t] * 180.0 / kPi;
     rep_.minAngleOutsideExempt = std::min(rep_.minAngleOutsideExempt, a);
     if (a < opt_.minAngleDeg) ++rep_.trianglesBelowBoundOutsideExempt;
   }
-  auto es = quality::edgeStats(out);
-  rep_.meanEdgeLength = es.meanLength;
-  rep_.delaunayFraction = es.delaunayFraction;
-  auto ti = quality::topologySummary(in), to = quality::topologySummary(out);
+  const quality::EdgeTopology et = quality::edgeStatsAndTopology(out);
+  rep_.meanEdgeLength = et.edges.meanLength;
+  rep_.delaunayFraction = et.edges.delaunayFraction;
+  const quality::TopologySummary ti = quality::topologySummary(in), &to = et.topology;
   rep_.topologyPreserved = ti.components == to.components && ti.boundaryLoops == to.boundaryLoops &&
                            ti.genus == to.genus && to.nonManifoldEdges == 0;
   // feature curves kept: every pair of consecutive samples is an output edge
