@@ -82,9 +82,11 @@ class TriangleMeshDistance {
   //! when the mesh has no valid triangle). hint: a triangle likely near p (e.g. the previous
   //! query's answer), or −1; the distance is the same with or without it, only faster.
   ClosestHit closest(const Vec3& p, int64_t hint = -1) const;
+  //! Squared distance from q to triangle f alone (an upper bound of the mesh's; infinity for an
+  //! invalid triangle).
+  double faceDistanceSquared(uint32_t f, const Vec3& q) const;
 
  private:
-  double faceDistanceSquared(uint32_t f, const Vec3& q) const;
   const MeshBuffers& mesh_;
   AabbTree tree_;
 };

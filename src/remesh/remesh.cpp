@@ -108,6 +108,7 @@ struct PatchWork {
   std::vector<uint32_t> localToGlobal;  // planar vertex -> output vertex (samples first)
   std::vector<F::Vec3> interiorPositions;  // positions of planar vertices that are interior
   std::vector<int> layoutFaces;             // per planar vertex: the flattened face of its lift, -1 none
+  std::vector<uint32_t> liftFaces;          // per planar vertex: the input (g_) face of its latest lift, kNone none
   std::vector<uint32_t> triangles;         // planar triangles (local indices)
   std::vector<double> planarPoints;        // planar positions of the latest meshing
   uint64_t builtAt = 0;
@@ -151,7 +152,7 @@ class Pipeline {
   std::vector<Piece> stretch(const PatchWork& w, const BoundaryPoint& p0, const BoundaryPoint& p1, size_t points) const;
   uint32_t addSplitSample(const PatchWork& w, const std::vector<BoundaryPoint>& bp, uint32_t s, double t);
   double curveKey(uint32_t c, uint32_t sample) const;
-  MeshBuffers stitch(std::vector<uint32_t>& trianglePatch) const;
+  MeshBuffers stitch(std::vector<uint32_t>& trianglePatch, std::vector<uint32_t>& vertexFace) const;
   std::vector<RemeshPatch> patchSnapshot(const MeshBuffers& out) const;
   std::vector<double> cornerWedgeAngles(const F::PatchMesh& pm) const;
   void indexExemptWedges(const std::vector<uint8_t>& exemptVertex);
@@ -690,6 +691,7 @@ void Pipeline::meshPatch(uint32_t p, bool splitSegments) {
   w.localToGlobal.assign(nv, kNone);
   w.interiorPositions.assign(nv, F::Vec3{});
   w.layoutFaces.assign(nv, -1);
+  w.liftFaces.assign(nv, kNone);
   for (size_t v = 0; v < nv; ++v) {
     if (v < bp.size()) {
       w.localToGlobal[v] = bp[v].sample;
@@ -708,6 +710,7 @@ void Pipeline::meshPatch(uint32_t p, bool splitSegments) {
       fail(Code::NumericalFailure, Stage::Lift, "a refinement vertex lies outside the flattened patch");
     w.interiorPositions[v] = {q.position[0], q.position[1], q.position[2]};
     w.layoutFaces[v] = q.layoutFace;
+    w.liftFaces[v] = w.pm.faceInput[q.face];
   }
   w.triangles = pmsh.triangles;
   w.planarPoints = pmsh.points;
@@ -736,6 +739,7 @@ void Pipeline::optimizeMesh(uint32_t p, const std::vector<uint8_t>& active) {
     PullbackPoint q;
     if (!liftPoint(w, x, y, q, w.layoutFaces[v])) return false;
     w.layoutFaces[v] = q.layoutFace;
+    w.liftFaces[v] = w.pm.faceInput[q.face];  // of the latest candidate: a hint, near the kept one
     out = {q.position[0], q.position[1], q.position[2]};
     return true;
   };
@@ -1015,11 +1019,30 @@ std::vector<std::vector<uint8_t>> Pipeline::slideSamples() {
   return slid;
 }
 
-MeshBuffers Pipeline::stitch(std::vector<uint32_t>& trianglePatch) const {
+// vertexFace: per output vertex, a face of the validated input it lies on or near (its lift's,
+// or one beside its curve sample's input edge or vertex), kNone when unknown: a hint for the
+// report's distance check.
+MeshBuffers Pipeline::stitch(std::vector<uint32_t>& trianglePatch, std::vector<uint32_t>& vertexFace) const {
   MeshBuffers out;
-  const size_t nS = cm_.samples.size();
-  for (const auto& s : cm_.samples) out.positions.insert(out.positions.end(), {s.position.x, s.position.y, s.position.z});
+  size_t nv = cm_.samples.size(), nt = 0;
+  for (const auto& w : work_) {
+    for (uint32_t g : w->localToGlobal) nv += g == kNone;
+    nt += w->triangles.size() / 3;
+  }
+  out.positions.reserve(3 * nv);
+  out.triangles.reserve(3 * nt);
   trianglePatch.clear();
+  trianglePatch.reserve(nt);
+  vertexFace.assign(nv, kNone);
+  auto inputFace = [&](uint32_t gf) { return gf < pre_.faceOrigin.size() ? pre_.faceOrigin[gf] : kNone; };
+  for (size_t i = 0; i < cm_.samples.size(); ++i) {
+    const F::CurveSample& s = cm_.samples[i];
+    out.positions.insert(out.positions.end(), {s.position.x, s.position.y, s.position.z});
+    uint32_t e = s.edge;
+    if (e == kNone && s.vertex != kNone && s.vertex < g_.vertexCount && g_.vertexEdgeStart[s.vertex] < g_.vertexEdgeStart[s.vertex + 1])
+      e = g_.vertexEdgeIds[g_.vertexEdgeStart[s.vertex]];
+    if (e != kNone && e < g_.edgeCount()) vertexFace[i] = inputFace(g_.edgeFaces[e][0] != kNone ? g_.edgeFaces[e][0] : g_.edgeFaces[e][1]);
+  }
   for (uint32_t p = 0; p < work_.size(); ++p) {
     const PatchWork& w = *work_[p];
     std::vector<uint32_t> id(w.localToGlobal.size());
@@ -1029,6 +1052,7 @@ MeshBuffers Pipeline::stitch(std::vector<uint32_t>& trianglePatch) const {
         id[v] = uint32_t(out.positions.size() / 3);
         const auto& q = w.interiorPositions[v];
         out.positions.insert(out.positions.end(), {q.x, q.y, q.z});
+        if (w.liftFaces[v] != kNone) vertexFace[id[v]] = inputFace(w.liftFaces[v]);
       }
     }
     for (size_t t = 0; t < w.triangles.size(); t += 3) {
@@ -1036,7 +1060,6 @@ MeshBuffers Pipeline::stitch(std::vector<uint32_t>& trianglePatch) const {
       trianglePatch.push_back(p);
     }
   }
-  (void)nS;
   return out;
 }
 
@@ -1243,6 +1266,7 @@ RemeshResult Pipeline::run(const MeshBuffers& input) {
   std::vector<uint8_t> exemptVertex;
   MeshBuffers bestOut;
   std::vector<uint32_t> bestTriPatch;
+  std::vector<uint32_t> vertexFace, bestVertexFace;  // stitch(): an input face per output vertex (a hint)
   size_t bestBad = SIZE_MAX, bestCollapsed = SIZE_MAX, bestDoubled = SIZE_MAX;
   int staleRounds = 0;  // certificate rounds in a row that did not beat the best
   std::vector<std::vector<uint32_t>> bestCurveSamples;
@@ -1291,7 +1315,7 @@ RemeshResult Pipeline::run(const MeshBuffers& input) {
     }
     rep_.conformingRounds = std::max(rep_.conformingRounds, round);
     rep_.seconds.refine += elapsed(t0);
-    out = stitch(triPatch);
+    out = stitch(triPatch, vertexFace);
     // exempt corners: input vertices where the input's own feature or boundary curves make a
     // wedge below the bound. Cuts are ours (not features): a small angle where a cut meets a
     // curve is not exempt.
@@ -1329,6 +1353,7 @@ RemeshResult Pipeline::run(const MeshBuffers& input) {
       bestCollapsed = collapsed;
       bestOut = out;
       bestTriPatch = triPatch;
+      bestVertexFace = vertexFace;
       bestCurveSamples = cm_.curveSamples;
       if (opt_.returnPatches) bestPatches = patchSnapshot(out);
       staleRounds = 0;
@@ -1382,6 +1407,7 @@ RemeshResult Pipeline::run(const MeshBuffers& input) {
   }
   out = std::move(bestOut);
   triPatch = std::move(bestTriPatch);
+  vertexFace = std::move(bestVertexFace);
   cm_.curveSamples = std::move(bestCurveSamples);
   rep_.seconds.lift = liftSeconds_;
   rep_.seconds.refine -= liftSeconds_ + optimizeSeconds_;
@@ -1478,7 +1504,14 @@ RemeshResult Pipeline::run(const MeshBuffers& input) {
     double worst = 0;
     int64_t hint = -1;  // consecutive output vertices are near each other (curves, then patches)
     for (size_t v = 0; v < out.vertexCount(); ++v) {
-      auto hit = dist.closest({out.positions[3 * v], out.positions[3 * v + 1], out.positions[3 * v + 2]}, hint);
+      const quality::Vec3 p{out.positions[3 * v], out.positions[3 * v + 1], out.positions[3 * v + 2]};
+      // the input face the vertex was lifted onto (or one beside its curve sample) bounds its
+      // distance: at most the worst so far, the vertex cannot change the maximum
+      if (vertexFace[v] < in.triangleCount()) {
+        hint = vertexFace[v];
+        if (dist.faceDistanceSquared(vertexFace[v], p) <= worst) continue;
+      }
+      auto hit = dist.closest(p, hint);
       hint = hit.primitive;
       worst = std::max(worst, hit.distanceSquared);
     }
