@@ -692,6 +692,7 @@ void Pipeline::meshPatch(uint32_t p, bool splitSegments) {
   w.interiorPositions.assign(nv, F::Vec3{});
   w.layoutFaces.assign(nv, -1);
   w.liftFaces.assign(nv, kNone);
+  int lastFace = -1;
   for (size_t v = 0; v < nv; ++v) {
     if (v < bp.size()) {
       w.localToGlobal[v] = bp[v].sample;
@@ -705,9 +706,12 @@ void Pipeline::meshPatch(uint32_t p, bool splitSegments) {
       w.localToGlobal[v] = addSplitSample(w, bp, bs, bt);
       continue;
     }
+    // the walk starts from the previous vertex's face (consecutive refinement vertices are
+    // mostly near each other); a hinted locate finds the same point as the grid search
     PullbackPoint q;
-    if (!liftPoint(w, pmsh.points[2 * v], pmsh.points[2 * v + 1], q))
+    if (!liftPoint(w, pmsh.points[2 * v], pmsh.points[2 * v + 1], q, lastFace))
       fail(Code::NumericalFailure, Stage::Lift, "a refinement vertex lies outside the flattened patch");
+    lastFace = q.layoutFace;
     w.interiorPositions[v] = {q.position[0], q.position[1], q.position[2]};
     w.layoutFaces[v] = q.layoutFace;
     w.liftFaces[v] = w.pm.faceInput[q.face];
@@ -1090,21 +1094,42 @@ constexpr double kCollapsedDeg = 1e-3;
 // Triangles whose three vertices another triangle also has; of each such pair, the one in the
 // patch with more triangles (the one to re-mesh with a vertex inside it). Ascending.
 std::vector<size_t> doubledTriangles(const MeshBuffers& m, const std::vector<uint32_t>& trianglePatch) {
-  std::vector<std::array<uint32_t, 4>> keys(m.triangleCount());
+  // the triangles' sorted vertex triples in (v0, v1, v2, t) order: a counting sort on v0, then
+  // an insertion sort of each (short) bucket on (v1, v2), stable, so t ascending within ties
+  const size_t nt = m.triangleCount(), nv = m.vertexCount();
+  std::vector<std::array<uint32_t, 3>> sorted(nt);
+  std::vector<uint32_t> start(nv + 1, 0);
   std::vector<size_t> patchSize;
-  for (size_t t = 0; t < m.triangleCount(); ++t) {
+  for (size_t t = 0; t < nt; ++t) {
     std::array<uint32_t, 3> v{m.triangles[3 * t], m.triangles[3 * t + 1], m.triangles[3 * t + 2]};
     std::sort(v.begin(), v.end());
-    keys[t] = {v[0], v[1], v[2], uint32_t(t)};
+    sorted[t] = v;
+    ++start[v[0] + 1];
     if (trianglePatch[t] >= patchSize.size()) patchSize.resize(trianglePatch[t] + 1, 0);
     ++patchSize[trianglePatch[t]];
   }
-  std::sort(keys.begin(), keys.end());
+  for (size_t v = 0; v < nv; ++v) start[v + 1] += start[v];
+  std::vector<uint32_t> order(nt);
+  {
+    std::vector<uint32_t> fill(start.begin(), start.end() - 1);
+    for (size_t t = 0; t < nt; ++t) order[fill[sorted[t][0]]++] = uint32_t(t);
+  }
+  auto less = [&](uint32_t a, uint32_t b) {
+    return sorted[a][1] != sorted[b][1] ? sorted[a][1] < sorted[b][1] : sorted[a][2] < sorted[b][2];
+  };
   std::vector<size_t> out;
-  for (size_t i = 0; i + 1 < keys.size(); ++i) {
-    if (keys[i][0] != keys[i + 1][0] || keys[i][1] != keys[i + 1][1] || keys[i][2] != keys[i + 1][2]) continue;
-    const uint32_t a = keys[i][3], b = keys[i + 1][3];
-    out.push_back(patchSize[trianglePatch[a]] >= patchSize[trianglePatch[b]] ? a : b);
+  for (size_t v = 0; v < nv; ++v) {
+    uint32_t* lo = order.data() + start[v];
+    uint32_t* hi = order.data() + start[v + 1];
+    if (hi - lo > 24) std::stable_sort(lo, hi, less);
+    else
+      for (uint32_t* i = lo + 1; i < hi; ++i)
+        for (uint32_t* j = i; j > lo && less(*j, *(j - 1)); --j) std::swap(*j, *(j - 1));
+    for (uint32_t* i = lo; i + 1 < hi; ++i) {
+      const uint32_t a = i[0], b = i[1];
+      if (sorted[a] != sorted[b]) continue;
+      out.push_back(patchSize[trianglePatch[a]] >= patchSize[trianglePatch[b]] ? a : b);
+    }
   }
   std::sort(out.begin(), out.end());
   out.erase(std::unique(out.begin(), out.end()), out.end());
