@@ -1292,6 +1292,7 @@ RemeshResult Pipeline::run(const MeshBuffers& input) {
   MeshBuffers bestOut;
   std::vector<uint32_t> bestTriPatch;
   std::vector<uint32_t> vertexFace, bestVertexFace;  // stitch(): an input face per output vertex (a hint)
+  bool outIsBest = false;  // the best round is the current one: kept in out (moved, not copied)
   size_t bestBad = SIZE_MAX, bestCollapsed = SIZE_MAX, bestDoubled = SIZE_MAX;
   int staleRounds = 0;  // certificate rounds in a row that did not beat the best
   std::vector<std::vector<uint32_t>> bestCurveSamples;
@@ -1340,6 +1341,12 @@ RemeshResult Pipeline::run(const MeshBuffers& input) {
     }
     rep_.conformingRounds = std::max(rep_.conformingRounds, round);
     rep_.seconds.refine += elapsed(t0);
+    if (outIsBest) {
+      bestOut = std::move(out);
+      bestTriPatch = std::move(triPatch);
+      bestVertexFace = std::move(vertexFace);
+      outIsBest = false;
+    }
     out = stitch(triPatch, vertexFace);
     // exempt corners: input vertices where the input's own feature or boundary curves make a
     // wedge below the bound. Cuts are ours (not features): a small angle where a cut meets a
@@ -1376,9 +1383,7 @@ RemeshResult Pipeline::run(const MeshBuffers& input) {
       bestDoubled = doubled.size();
       bestBad = bad;
       bestCollapsed = collapsed;
-      bestOut = out;
-      bestTriPatch = triPatch;
-      bestVertexFace = vertexFace;
+      outIsBest = true;
       bestCurveSamples = cm_.curveSamples;
       if (opt_.returnPatches) bestPatches = patchSnapshot(out);
       staleRounds = 0;
@@ -1430,9 +1435,11 @@ RemeshResult Pipeline::run(const MeshBuffers& input) {
     }
     ++rep_.certificateRounds;
   }
-  out = std::move(bestOut);
-  triPatch = std::move(bestTriPatch);
-  vertexFace = std::move(bestVertexFace);
+  if (!outIsBest) {
+    out = std::move(bestOut);
+    triPatch = std::move(bestTriPatch);
+    vertexFace = std::move(bestVertexFace);
+  }
   cm_.curveSamples = std::move(bestCurveSamples);
   rep_.seconds.lift = liftSeconds_;
   rep_.seconds.refine -= liftSeconds_ + optimizeSeconds_;
@@ -1440,7 +1447,11 @@ RemeshResult Pipeline::run(const MeshBuffers& input) {
   rep_.seconds.stitch = elapsed(t0);
   checkOutputCounts(out.vertexCount(), out.triangleCount(), opt_);  // remesh/limits.h
 
-  // report
+  // report. The patches' work is done: their memory goes back to the heap first, where the
+  // report's buffers find it (fresh pages cost a fault each).
+  rep_.patches = work_.size();
+  for (const auto& w : work_) rep_.flowIterations.push_back(w->flat.report.iterations);
+  work_.clear();
   std::vector<double> triMinRad;  // per triangle, NaN when degenerate
   auto as = quality::angleStats(out, &triMinRad);
   rep_.triangles = out.triangleCount();
@@ -1519,11 +1530,9 @@ RemeshResult Pipeline::run(const MeshBuffers& input) {
   rep_.sharpEdges = seg_.sharpEdgeCount;
   rep_.cutEdges = seg_.cutEdgeCount;
   rep_.droppedFeatureEdges = seg_.droppedFeatureEdges;
-  rep_.patches = work_.size();
   rep_.curves = seg_.curves.size();
   rep_.curveSamples = cm_.samples.size();
   rep_.patchSplitsForScale = scaleSplits_;
-  for (const auto& w : work_) rep_.flowIterations.push_back(w->flat.report.iterations);
   {
     quality::TriangleMeshDistance dist(in);
     double worst = 0;
