@@ -132,6 +132,17 @@ bool oppositeSinCos(const MeshBuffers& m, const EdgeRef& r, double& sinA, double
   return std::isfinite(sinA) && std::isfinite(cosA);
 }
 
+//! Whether the angle opposite to edge `r` is at most 90° (u·v >= 0) with oppositeSinCos sure to
+//! succeed (a nonzero cross product, sides far from under- and overflow); false when unsure.
+bool oppositeSurelyNotObtuse(const MeshBuffers& m, const EdgeRef& r) {
+  const uint32_t* t = &m.triangles[3 * size_t(r.face)];
+  if (t[0] == t[1] || t[1] == t[2] || t[2] == t[0]) return false;
+  const Vec3 o = vertex(m, t[r.corner]);
+  const Vec3 u = sub(vertex(m, t[(r.corner + 1) % 3]), o), v = sub(vertex(m, t[(r.corner + 2) % 3]), o);
+  const double uu = dot(u, u), vv = dot(v, v), cc = dot(cross(u, v), cross(u, v));
+  return dot(u, v) >= 0 && uu >= 1e-200 && uu <= 1e200 && vv >= 1e-200 && vv <= 1e200 && cc > 0 && cc <= 1e300;
+}
+
 struct UnionFind {
   std::vector<uint32_t> parent;
   explicit UnionFind(size_t n) : parent(n) { std::iota(parent.begin(), parent.end(), 0u); }
@@ -297,10 +308,13 @@ EdgeStats edgeStatsOf(const MeshBuffers& mesh, const std::vector<EdgeRef>& refs)
     if (j - i == 2) {
       ++interior;
       // Delaunay: the two opposite angles sum to at most pi (within 1e-12), i.e.
-      // sin(a0 + a1) = sin a0 cos a1 + cos a0 sin a1 >= -1e-12 (the sum lies in (0, 2 pi))
+      // sin(a0 + a1) = sin a0 cos a1 + cos a0 sin a1 >= -1e-12 (the sum lies in (0, 2 pi)).
+      // Two angles of at most 90° pass for sure: both cosines >= 0, so the computed sum is
+      // >= -(a few ulp) (most edges of a good mesh; no square root or division for them).
       double s0, c0, s1, c1;
-      if (oppositeSinCos(mesh, refs[i], s0, c0) && oppositeSinCos(mesh, refs[i + 1], s1, c1) &&
-          s0 * c1 + c0 * s1 >= -1e-12)
+      if ((oppositeSurelyNotObtuse(mesh, refs[i]) && oppositeSurelyNotObtuse(mesh, refs[i + 1])) ||
+          (oppositeSinCos(mesh, refs[i], s0, c0) && oppositeSinCos(mesh, refs[i + 1], s1, c1) &&
+           s0 * c1 + c0 * s1 >= -1e-12))
         ++delaunay;
     }
     i = j;
