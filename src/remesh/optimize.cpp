@@ -26,14 +26,16 @@ struct Corner {
   double cr, dt;
 };
 
-Corner smallestCorner(const Vec3& a, const Vec3& b, const Vec3& c) {
+// The sides at the corner are the differences already taken, one of them negated: x - y is
+// exactly -(y - x), so |u × -x| = |u × x| and u·(-x) = -(u·x) bit for bit.
+inline Corner smallestCorner(const Vec3& a, const Vec3& b, const Vec3& c) {
   const Vec3 ab = b - a, bc = c - b, ca = a - c;
   const double lab = features::dot(ab, ab), lbc = features::dot(bc, bc), lca = features::dot(ca, ca);
-  Vec3 u, w;
-  if (lab <= lbc && lab <= lca) u = a - c, w = b - c;  // at c
-  else if (lbc <= lca) u = b - a, w = c - a;           // at a
-  else u = c - b, w = a - b;                           // at b
-  return {features::norm(features::cross(u, w)), features::dot(u, w)};
+  const Vec3 *u, *x;
+  if (lab <= lbc && lab <= lca) u = &ca, x = &bc;  // at c: a - c and b - c = -(c - b)
+  else if (lbc <= lca) u = &ab, x = &ca;           // at a: b - a and c - a = -(a - c)
+  else u = &bc, x = &ab;                           // at b: c - b and a - b = -(b - a)
+  return {features::norm(features::cross(*u, *x)), -features::dot(*u, *x)};
 }
 
 double cornerDeg(const Corner& k) { return ((k.cr == 0 && k.dt == 0) ? 0.0 : dmath::atan2(k.cr, k.dt)) * kRadToDeg; }
