@@ -477,10 +477,23 @@ double minAngleDeg3Approx(const Vec3& a, const Vec3& b, const Vec3& c) { return 
 
 OptimizeStats optimizePatch(std::vector<double>& xy, std::vector<uint32_t>& triangles, std::vector<Vec3>& pos,
                             const std::vector<uint8_t>& fixed, const LiftFn& lift, const OptimizeOptions& o,
-                            const std::vector<uint8_t>& active0, const SurfaceSamples& guard) {
+                            const std::vector<uint8_t>& active0, const SurfaceSamples& guard, OptimizeCache* cache) {
   Mesh m{xy, triangles, pos, fixed, {}, {}, {}, {}, nullptr, {}, {}, {}};
   OptimizeStats st;
-  m.cacheAll();
+  const size_t nt = triangles.size() / 3;
+  // the previous call's min angles stand where no vertex moved since (the same positions give
+  // the same values); its adjacency stands as the triangles are the same
+  const bool reuse = cache && active0.size() == xy.size() / 2 && cache->minAngle.size() == nt && cache->adjacency.size() == 3 * nt;
+  if (reuse) {
+    m.minAngle.swap(cache->minAngle);
+    m.adj.swap(cache->adjacency);
+    for (size_t t = 0; t < nt; ++t) {
+      const uint32_t* v = &triangles[3 * t];
+      if (active0[v[0]] || active0[v[1]] || active0[v[2]]) m.minAngle[t] = m.triMin(uint32_t(t));
+    }
+  } else {
+    m.cacheAll();
+  }
   if (!guard.pos.empty()) {
     m.guard = &guard;
     bucketGuard(m);
@@ -492,7 +505,7 @@ OptimizeStats optimizePatch(std::vector<double>& xy, std::vector<uint32_t>& tria
   // in the previous pass
   std::vector<uint8_t> active = active0.size() == nv ? active0 : std::vector<uint8_t>(nv, 1), nextActive(nv, 0), changed(nv, 0);
   m.buildStars();
-  buildAdjacency(m);
+  if (!reuse) buildAdjacency(m);
   size_t flips = 0;
   for (int it = 0; it < o.maxIterations; ++it) {
     if (flips > 0) m.buildStars();  // moves keep the connectivity; flips change it
@@ -544,6 +557,10 @@ OptimizeStats optimizePatch(std::vector<double>& xy, std::vector<uint32_t>& tria
     st.meanMinAngleAfter = now;
     if (now - last < o.tolerance * std::max(last, 1e-9)) break;
     last = now;
+  }
+  if (cache) {
+    cache->minAngle.swap(m.minAngle);
+    cache->adjacency.swap(m.adj);
   }
   return st;
 }

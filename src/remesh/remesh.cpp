@@ -109,6 +109,7 @@ struct PatchWork {
   std::vector<F::Vec3> interiorPositions;  // positions of planar vertices that are interior
   std::vector<int> layoutFaces;             // per planar vertex: the flattened face of its lift, -1 none
   std::vector<uint32_t> liftFaces;          // per planar vertex: the input (g_) face of its latest lift, kNone none
+  optimization::OptimizeCache optimizeCache;  // the latest optimizePatch's, for the next one on this meshing
   std::vector<uint32_t> triangles;         // planar triangles (local indices)
   std::vector<double> planarPoints;        // planar positions of the latest meshing
   uint64_t builtAt = 0;
@@ -692,6 +693,7 @@ void Pipeline::meshPatch(uint32_t p, bool splitSegments) {
   w.interiorPositions.assign(nv, F::Vec3{});
   w.layoutFaces.assign(nv, -1);
   w.liftFaces.assign(nv, kNone);
+  w.optimizeCache = {};
   int lastFace = -1;
   for (size_t v = 0; v < nv; ++v) {
     if (v < bp.size()) {
@@ -757,7 +759,9 @@ void Pipeline::optimizeMesh(uint32_t p, const std::vector<uint8_t>& active) {
     for (size_t v = 0; v < guard.pos.size(); ++v) guard.pos[v] = g_.positions[w.pm.vertexInput[v]];
     guard.tolerance = opt_.chordTolerance >= 0 ? opt_.chordTolerance : opt_.chordToleranceRel * sizing_.diagonal;
   }
-  optimization::OptimizeStats st = optimization::optimizePatch(w.planarPoints, w.triangles, pos, fixed, lift, oo, active, guard);
+  // between two optimizations of one meshing only slides move vertices, and `active` has every
+  // vertex of a slid sample's stars
+  optimization::OptimizeStats st = optimization::optimizePatch(w.planarPoints, w.triangles, pos, fixed, lift, oo, active, guard, &w.optimizeCache);
   for (size_t v = 0; v < nv; ++v)
     if (!fixed[v]) w.interiorPositions[v] = pos[v];
   rep_.optimizeMoves += st.moves;
