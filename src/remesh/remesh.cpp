@@ -813,9 +813,15 @@ std::vector<std::vector<uint8_t>> Pipeline::slideSamples() {
     std::vector<uint32_t> fill(st.start.begin(), st.start.end() - 1);
     for (size_t t = 0; t < nt; ++t)
       for (int c = 0; c < 3; ++c) st.tri[fill[w.triangles[3 * t + c]]++] = uint32_t(t);
-    st.minAngle.resize(nt);
-    for (size_t t = 0; t < nt; ++t)
-      st.minAngle[t] = optimization::minAngleDeg3(pos3(w, w.triangles[3 * t]), pos3(w, w.triangles[3 * t + 1]), pos3(w, w.triangles[3 * t + 2]));
+    // the patch's latest optimization left these very values (minAngleDeg3 of the same
+    // positions: only optimizations and slides move vertices, and each keeps them current)
+    if (work_[p]->optimizeCache.minAngle.size() == nt) {
+      st.minAngle.swap(work_[p]->optimizeCache.minAngle);
+    } else {
+      st.minAngle.resize(nt);
+      for (size_t t = 0; t < nt; ++t)
+        st.minAngle[t] = optimization::minAngleDeg3(pos3(w, w.triangles[3 * t]), pos3(w, w.triangles[3 * t + 1]), pos3(w, w.triangles[3 * t + 2]));
+    }
     const auto& loop = w.pm.boundaryLoops[0];
     for (uint32_t k = 0; k < loop.size(); ++k) st.loopOfEdge[g_.faceEdges[w.pm.faceInput[loop[k].face]][loop[k].corner]].push_back(k);
     for (uint32_t v = 0; v < nv; ++v)
@@ -1023,6 +1029,8 @@ std::vector<std::vector<uint8_t>> Pipeline::slideSamples() {
     if (slides == 0) break;
     activeS.swap(nextS);
   }
+  // the min angles, kept exact through the slides, go back for the next optimization
+  for (uint32_t p = 0; p < work_.size(); ++p) work_[p]->optimizeCache.minAngle.swap(stars[p].minAngle);
   optimizeSeconds_ += elapsed(t0);
   return slid;
 }
