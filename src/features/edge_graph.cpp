@@ -51,9 +51,7 @@ EdgeGraph buildEdgeGraph(const MeshBuffers& mesh) {
     uint32_t face;
     uint8_t corner;
   };
-  std::vector<HalfKey> halves;
-  halves.reserve(3 * size_t(g.faceCount));
-  for (uint32_t f = 0; f < g.faceCount; ++f) {
+  for (uint32_t f = 0; f < g.faceCount; ++f)
     for (int i = 0; i < 3; ++i) {
       uint32_t v = mesh.triangles[3 * size_t(f) + i];
       if (v >= g.vertexCount)
@@ -61,15 +59,47 @@ EdgeGraph buildEdgeGraph(const MeshBuffers& mesh) {
              "triangle " + std::to_string(f) + " refers to vertex " + std::to_string(v));
       g.faces[f][i] = v;
     }
-    for (int i = 0; i < 3; ++i) {
-      uint32_t a = g.faces[f][i], b = g.faces[f][(i + 1) % 3];
-      uint64_t lo = std::min(a, b), hi = std::max(a, b);
-      halves.push_back({(lo << 32) | hi, f, uint8_t(i)});
+  // every face side as a half, ordered by (key, face)
+  std::vector<HalfKey> halves;
+  auto forEachHalf = [&](auto&& visit) {
+    for (uint32_t f = 0; f < g.faceCount; ++f)
+      for (int i = 0; i < 3; ++i) {
+        uint32_t a = g.faces[f][i], b = g.faces[f][(i + 1) % 3];
+        uint64_t lo = std::min(a, b), hi = std::max(a, b);
+        visit(HalfKey{(lo << 32) | hi, f, uint8_t(i)});
+      }
+  };
+  auto byKeyFace = [](const HalfKey& a, const HalfKey& b) { return a.key != b.key ? a.key < b.key : a.face < b.face; };
+  bool repeated = false;
+  for (const auto& t : g.faces) repeated = repeated || t[0] == t[1] || t[1] == t[2] || t[2] == t[0];
+  if (repeated) {
+    halves.reserve(3 * size_t(g.faceCount));
+    forEachHalf([&](const HalfKey& h) { halves.push_back(h); });
+    std::sort(halves.begin(), halves.end(), byKeyFace);
+  } else {
+    // No two halves share (key, face), so the order is unique: a counting sort on the smaller
+    // vertex (faces ascending within a bucket, as visited), then each bucket, about the vertex's
+    // degree of entries, sorted on the key.
+    std::vector<uint32_t> start(size_t(g.vertexCount) + 1, 0);
+    forEachHalf([&](const HalfKey& h) { ++start[(h.key >> 32) + 1]; });
+    for (uint32_t v = 0; v < g.vertexCount; ++v) start[v + 1] += start[v];
+    halves.resize(3 * size_t(g.faceCount));
+    std::vector<uint32_t> fill(start.begin(), start.end() - 1);
+    forEachHalf([&](const HalfKey& h) { halves[fill[h.key >> 32]++] = h; });
+    for (uint32_t v = 0; v < g.vertexCount; ++v) {
+      HalfKey* lo = halves.data() + start[v];
+      HalfKey* hi = halves.data() + start[v + 1];
+      if (hi - lo > 24) {
+        std::sort(lo, hi, byKeyFace);
+        continue;
+      }
+      for (HalfKey* i = lo + 1; i < hi; ++i)
+        for (HalfKey* j = i; j > lo && byKeyFace(*j, *(j - 1)); --j) std::swap(*j, *(j - 1));
     }
   }
-  std::sort(halves.begin(), halves.end(), [](const HalfKey& a, const HalfKey& b) {
-    return a.key != b.key ? a.key < b.key : a.face < b.face;
-  });
+  // about one edge per two halves (more with boundary edges)
+  g.edgeVerts.reserve(halves.size() / 2 + halves.size() / 16 + 1);
+  g.edgeFaces.reserve(halves.size() / 2 + halves.size() / 16 + 1);
   g.faceEdges.assign(g.faceCount, {kNone, kNone, kNone});
   for (size_t i = 0; i < halves.size();) {
     size_t j = i;

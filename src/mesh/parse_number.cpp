@@ -1,4 +1,5 @@
 // conformesh — exact decimal number parsing and printing for the text mesh formats.
+#include <charconv>
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
@@ -195,7 +196,15 @@ size_t formatDouble(double v, char* out) {
   // wins; the check parses the candidate, so a double rounding can only cost a digit, never
   // exactness).
   char buf[48];
+#if defined(__cpp_lib_to_chars) && __cpp_lib_to_chars >= 201611L
+  // the same characters as printf's "%.16e" (both are exact; to_chars is specified as printf),
+  // without printf's multi-precision path, where most of the time writing a mesh went
+  const std::to_chars_result r = std::to_chars(buf, buf + sizeof(buf) - 1, v, std::chars_format::scientific, 16);
+  const int n = r.ec == std::errc() ? int(r.ptr - buf) : -1;
+  if (n > 0) buf[n] = '\0';
+#else
   const int n = std::snprintf(buf, sizeof(buf), "%.16e", v);  // [-]d.dddddddddddddddde[+-]XX
+#endif
   const bool neg = buf[0] == '-';
   const char* p = buf + (neg ? 1 : 0);
   if (n <= 0 || n >= int(sizeof(buf)) || p[1] != '.' || p[18] != 'e')

@@ -3,6 +3,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <numeric>
 
 namespace conformesh::quality {
@@ -31,15 +32,49 @@ bool triangleValid(const MeshBuffers& m, size_t f) {
   return t[0] < n && t[1] < n && t[2] < n;
 }
 
-//! Corner angles (radians) of triangle f; false when degenerate (repeated vertex, zero area).
-bool cornerAngles(const MeshBuffers& m, size_t f, double ang[3]) {
+//! Smallest and largest corner angle (radians, each atan2(|u×v|, u·v) of the corner's sides) of
+//! triangle f; false when degenerate (repeated vertex, zero area, a non-finite angle). One atan2
+//! fewer than all three angles when the corner cosines tell them apart: a cosine computed as
+//! u·v / (|u||v|) is within a few ulp of the exact one, and the atan2 form within a few 1e-16 rad of the exact
+//! angle, so cosines more than 1e-9 apart order the computed angles as they order the exact ones
+//! (|Δcos| ≤ |Δangle|); otherwise all three are computed.
+bool minMaxAngle(const MeshBuffers& m, size_t f, double& mn, double& mx) {
   if (!triangleValid(m, f)) return false;
   const uint32_t* t = &m.triangles[3 * f];
   if (t[0] == t[1] || t[1] == t[2] || t[2] == t[0]) return false;
-  Vec3 p[3] = {vertex(m, t[0]), vertex(m, t[1]), vertex(m, t[2])};
-  if (!(norm(cross(sub(p[1], p[0]), sub(p[2], p[0]))) > 0)) return false;
-  for (int k = 0; k < 3; ++k) ang[k] = angleBetween(sub(p[(k + 1) % 3], p[k]), sub(p[(k + 2) % 3], p[k]));
-  return std::isfinite(ang[0]) && std::isfinite(ang[1]) && std::isfinite(ang[2]);
+  const Vec3 p[3] = {vertex(m, t[0]), vertex(m, t[1]), vertex(m, t[2])};
+  Vec3 u[3], v[3];
+  double cr[3], d[3], c[3];
+  bool normal = true;  // side lengths far from under- and overflow: the cosines are accurate
+  for (int k = 0; k < 3; ++k) {
+    u[k] = sub(p[(k + 1) % 3], p[k]);
+    v[k] = sub(p[(k + 2) % 3], p[k]);
+    cr[k] = norm(cross(u[k], v[k]));
+    d[k] = dot(u[k], v[k]);
+    const double uu = dot(u[k], u[k]), vv = dot(v[k], v[k]);
+    normal = normal && uu >= 1e-200 && uu <= 1e200 && vv >= 1e-200 && vv <= 1e200;
+    c[k] = d[k] / (std::sqrt(uu) * std::sqrt(vv));
+  }
+  if (!(cr[0] > 0)) return false;
+  // i0: the largest cosine (smallest angle), i2: the smallest cosine, i1 the other
+  int i0 = 0, i2 = 0;
+  for (int k = 1; k < 3; ++k) {
+    if (c[k] > c[i0]) i0 = k;
+    if (c[k] < c[i2]) i2 = k;
+  }
+  const int i1 = 3 - i0 - i2;
+  constexpr double kApart = 1e-9;
+  if (normal && i0 != i2 && c[i0] - c[i1] > kApart && c[i1] - c[i2] > kApart && std::isfinite(cr[i1]) && std::isfinite(d[i1])) {
+    mn = dmath::atan2(cr[i0], d[i0]);
+    mx = dmath::atan2(cr[i2], d[i2]);
+    return std::isfinite(mn) && std::isfinite(mx);
+  }
+  double ang[3];
+  for (int k = 0; k < 3; ++k) ang[k] = dmath::atan2(cr[k], d[k]);
+  if (!(std::isfinite(ang[0]) && std::isfinite(ang[1]) && std::isfinite(ang[2]))) return false;
+  mn = std::min({ang[0], ang[1], ang[2]});
+  mx = std::max({ang[0], ang[1], ang[2]});
+  return true;
 }
 
 //! Undirected edge with the face it came from and the corner opposite to it.
@@ -95,6 +130,17 @@ bool oppositeSinCos(const MeshBuffers& m, const EdgeRef& r, double& sinA, double
   sinA = cr / (lu * lv);
   cosA = dot(u, v) / (lu * lv);
   return std::isfinite(sinA) && std::isfinite(cosA);
+}
+
+//! Whether the angle opposite to edge `r` is at most 90° (u·v >= 0) with oppositeSinCos sure to
+//! succeed (a nonzero cross product, sides far from under- and overflow); false when unsure.
+bool oppositeSurelyNotObtuse(const MeshBuffers& m, const EdgeRef& r) {
+  const uint32_t* t = &m.triangles[3 * size_t(r.face)];
+  if (t[0] == t[1] || t[1] == t[2] || t[2] == t[0]) return false;
+  const Vec3 o = vertex(m, t[r.corner]);
+  const Vec3 u = sub(vertex(m, t[(r.corner + 1) % 3]), o), v = sub(vertex(m, t[(r.corner + 2) % 3]), o);
+  const double uu = dot(u, u), vv = dot(v, v), cc = dot(cross(u, v), cross(u, v));
+  return dot(u, v) >= 0 && uu >= 1e-200 && uu <= 1e200 && vv >= 1e-200 && vv <= 1e200 && cc > 0 && cc <= 1e300;
 }
 
 struct UnionFind {
@@ -207,20 +253,21 @@ void oneSided(const std::vector<Vec3>& pts, const TriangleMeshDistance& target, 
 
 }  // namespace
 
-AngleStats angleStats(const MeshBuffers& mesh) {
+AngleStats angleStats(const MeshBuffers& mesh, std::vector<double>* triangleMinAngles) {
   AngleStats s;
   s.triangles = mesh.triangleCount();
+  if (triangleMinAngles) triangleMinAngles->assign(s.triangles, std::numeric_limits<double>::quiet_NaN());
   if (s.triangles == 0) return s;
   s.minAngle = 180;
   s.maxAngle = 0;
   double sumMin = 0;
   size_t below20 = 0, below26 = 0, below30 = 0;
   for (size_t f = 0; f < s.triangles; ++f) {
-    double ang[3];
     double mn, mx;
-    if (cornerAngles(mesh, f, ang)) {
-      mn = std::min({ang[0], ang[1], ang[2]}) * kDeg;
-      mx = std::max({ang[0], ang[1], ang[2]}) * kDeg;
+    if (minMaxAngle(mesh, f, mn, mx)) {
+      if (triangleMinAngles) (*triangleMinAngles)[f] = mn;
+      mn *= kDeg;
+      mx *= kDeg;
     } else {
       ++s.degenerateTriangles;
       mn = 0;
@@ -243,9 +290,10 @@ AngleStats angleStats(const MeshBuffers& mesh) {
   return s;
 }
 
-EdgeStats edgeStats(const MeshBuffers& mesh) {
+namespace {
+
+EdgeStats edgeStatsOf(const MeshBuffers& mesh, const std::vector<EdgeRef>& refs) {
   EdgeStats s;
-  std::vector<EdgeRef> refs = sortedEdgeRefs(mesh);
   double sum = 0;
   size_t interior = 0, delaunay = 0;
   s.minLength = std::numeric_limits<double>::infinity();
@@ -260,10 +308,13 @@ EdgeStats edgeStats(const MeshBuffers& mesh) {
     if (j - i == 2) {
       ++interior;
       // Delaunay: the two opposite angles sum to at most pi (within 1e-12), i.e.
-      // sin(a0 + a1) = sin a0 cos a1 + cos a0 sin a1 >= -1e-12 (the sum lies in (0, 2 pi))
+      // sin(a0 + a1) = sin a0 cos a1 + cos a0 sin a1 >= -1e-12 (the sum lies in (0, 2 pi)).
+      // Two angles of at most 90° pass for sure: both cosines >= 0, so the computed sum is
+      // >= -(a few ulp) (most edges of a good mesh; no square root or division for them).
       double s0, c0, s1, c1;
-      if (oppositeSinCos(mesh, refs[i], s0, c0) && oppositeSinCos(mesh, refs[i + 1], s1, c1) &&
-          s0 * c1 + c0 * s1 >= -1e-12)
+      if ((oppositeSurelyNotObtuse(mesh, refs[i]) && oppositeSurelyNotObtuse(mesh, refs[i + 1])) ||
+          (oppositeSinCos(mesh, refs[i], s0, c0) && oppositeSinCos(mesh, refs[i + 1], s1, c1) &&
+           s0 * c1 + c0 * s1 >= -1e-12))
         ++delaunay;
     }
     i = j;
@@ -274,7 +325,7 @@ EdgeStats edgeStats(const MeshBuffers& mesh) {
   return s;
 }
 
-TopologySummary topologySummary(const MeshBuffers& mesh) {
+TopologySummary topologyOf(const MeshBuffers& mesh, const std::vector<EdgeRef>& refs) {
   TopologySummary t;
   size_t nv = mesh.vertexCount();
   std::vector<char> used(nv, 0);
@@ -292,7 +343,6 @@ TopologySummary topologySummary(const MeshBuffers& mesh) {
     ++t.vertices;
     if (comps.find(uint32_t(v)) == v) ++t.components;
   }
-  std::vector<EdgeRef> refs = sortedEdgeRefs(mesh);
   UnionFind loops(nv);
   std::vector<char> onBoundary(nv, 0);
   for (size_t i = 0; i < refs.size();) {
@@ -316,6 +366,17 @@ TopologySummary topologySummary(const MeshBuffers& mesh) {
     t.genus = twice >= 0 && twice % 2 == 0 ? twice / 2 : -1;
   }
   return t;
+}
+
+}  // namespace
+
+EdgeStats edgeStats(const MeshBuffers& mesh) { return edgeStatsOf(mesh, sortedEdgeRefs(mesh)); }
+
+TopologySummary topologySummary(const MeshBuffers& mesh) { return topologyOf(mesh, sortedEdgeRefs(mesh)); }
+
+EdgeTopology edgeStatsAndTopology(const MeshBuffers& mesh) {
+  const std::vector<EdgeRef> refs = sortedEdgeRefs(mesh);
+  return {edgeStatsOf(mesh, refs), topologyOf(mesh, refs)};
 }
 
 Box3 boundingBox(const MeshBuffers& mesh) {

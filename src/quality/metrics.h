@@ -9,6 +9,7 @@
 
 #include <cstddef>
 #include <cstdint>
+#include <vector>
 
 #include "core/mesh_buffers.h"
 #include "quality/aabb_tree.h"
@@ -32,7 +33,9 @@ struct AngleStats {
 
 //! Angle statistics of every triangle. Indices must be < vertexCount() (precondition: the
 //! caller validated the buffers; out-of-range triangles are counted as degenerate).
-AngleStats angleStats(const MeshBuffers& mesh);
+//! triangleMinAngles (optional): set to each triangle's smallest corner angle in radians,
+//! atan2(|u×v|, u·v) of its two sides, NaN for a degenerate triangle.
+AngleStats angleStats(const MeshBuffers& mesh, std::vector<double>* triangleMinAngles = nullptr);
 
 //! Edge lengths (unique undirected edges) and the fraction of interior manifold edges that are
 //! Delaunay in 3D (sum of the two opposite angles ≤ π, with 1e-12 slack).
@@ -60,6 +63,13 @@ struct TopologySummary {
 };
 TopologySummary topologySummary(const MeshBuffers& mesh);
 
+//! edgeStats and topologySummary of one mesh, its edges grouped once for both.
+struct EdgeTopology {
+  EdgeStats edges;
+  TopologySummary topology;
+};
+EdgeTopology edgeStatsAndTopology(const MeshBuffers& mesh);
+
 //! Axis-aligned bounding box of the referenced vertices (all vertices if none are referenced).
 Box3 boundingBox(const MeshBuffers& mesh);
 
@@ -72,9 +82,11 @@ class TriangleMeshDistance {
   //! when the mesh has no valid triangle). hint: a triangle likely near p (e.g. the previous
   //! query's answer), or −1; the distance is the same with or without it, only faster.
   ClosestHit closest(const Vec3& p, int64_t hint = -1) const;
+  //! Squared distance from q to triangle f alone (an upper bound of the mesh's; infinity for an
+  //! invalid triangle).
+  double faceDistanceSquared(uint32_t f, const Vec3& q) const;
 
  private:
-  double faceDistanceSquared(uint32_t f, const Vec3& q) const;
   const MeshBuffers& mesh_;
   AabbTree tree_;
 };

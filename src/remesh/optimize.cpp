@@ -26,14 +26,16 @@ struct Corner {
   double cr, dt;
 };
 
-Corner smallestCorner(const Vec3& a, const Vec3& b, const Vec3& c) {
+// The sides at the corner are the differences already taken, one of them negated: x - y is
+// exactly -(y - x), so |u × -x| = |u × x| and u·(-x) = -(u·x) bit for bit.
+inline Corner smallestCorner(const Vec3& a, const Vec3& b, const Vec3& c) {
   const Vec3 ab = b - a, bc = c - b, ca = a - c;
   const double lab = features::dot(ab, ab), lbc = features::dot(bc, bc), lca = features::dot(ca, ca);
-  Vec3 u, w;
-  if (lab <= lbc && lab <= lca) u = a - c, w = b - c;  // at c
-  else if (lbc <= lca) u = b - a, w = c - a;           // at a
-  else u = c - b, w = a - b;                           // at b
-  return {features::norm(features::cross(u, w)), features::dot(u, w)};
+  const Vec3 *u, *x;
+  if (lab <= lbc && lab <= lca) u = &ca, x = &bc;  // at c: a - c and b - c = -(c - b)
+  else if (lbc <= lca) u = &ab, x = &ca;           // at a: b - a and c - a = -(a - c)
+  else u = &bc, x = &ab;                           // at b: c - b and a - b = -(b - a)
+  return {features::norm(features::cross(*u, *x)), -features::dot(*u, *x)};
 }
 
 double cornerDeg(const Corner& k) { return ((k.cr == 0 && k.dt == 0) ? 0.0 : dmath::atan2(k.cr, k.dt)) * kRadToDeg; }
@@ -135,18 +137,22 @@ void bucketGuard(Mesh& m) {
     const double f = hi[d] > lo[d] ? (x - lo[d]) / (hi[d] - lo[d]) : 0.0;
     return std::clamp(int(f * g), 0, g - 1);
   };
+  // each triangle's cell range, computed once for both passes
+  std::vector<std::array<int, 4>> range(nt);  // i0, j0, i1, j1
+  for (uint32_t t = 0; t < nt; ++t) {
+    const uint32_t* v = &m.tri[3 * size_t(t)];
+    for (int d = 0; d < 2; ++d) {
+      const double a = std::min({m.p(v[0])[d], m.p(v[1])[d], m.p(v[2])[d]}), b = std::max({m.p(v[0])[d], m.p(v[1])[d], m.p(v[2])[d]});
+      range[t][d] = cell(a, d), range[t][2 + d] = cell(b, d);
+    }
+  }
   std::vector<uint32_t> start(size_t(g) * g + 1, 0), items;
   for (int pass = 0; pass < 2; ++pass) {
     std::vector<uint32_t> fill(start.begin(), start.end() - 1);
     for (uint32_t t = 0; t < nt; ++t) {
-      const uint32_t* v = &m.tri[3 * size_t(t)];
-      int c0[2], c1[2];
-      for (int d = 0; d < 2; ++d) {
-        const double a = std::min({m.p(v[0])[d], m.p(v[1])[d], m.p(v[2])[d]}), b = std::max({m.p(v[0])[d], m.p(v[1])[d], m.p(v[2])[d]});
-        c0[d] = cell(a, d), c1[d] = cell(b, d);
-      }
-      for (int j = c0[1]; j <= c1[1]; ++j)
-        for (int i = c0[0]; i <= c1[0]; ++i) {
+      const std::array<int, 4>& r = range[t];
+      for (int j = r[1]; j <= r[3]; ++j)
+        for (int i = r[0]; i <= r[2]; ++i) {
           const size_t c = size_t(j) * g + i;
           if (pass == 0) ++start[c + 1];
           else items[fill[c]++] = t;
@@ -409,11 +415,18 @@ inline void relink(Mesh& m, uint32_t t, uint32_t from, uint32_t to) {
 // the smaller 3D min angle of its two triangles gets larger. Returns the number of flips.
 // Edges are visited by triangle (each from its triangle of smaller index), only those with an
 // end in `region`: an edge whose quad did not change since the last pass refused it would
-// refuse it again. Pre: m.adj is current.
+// refuse it again. Only triangles with a vertex in `region` can have such an edge: they are
+// marked first (from the stars), and a flip marks its second triangle, which it may give one.
+// Pre: m.adj and the stars are current.
 size_t flipPass(Mesh& m, std::vector<uint8_t>& touched, const std::vector<uint8_t>& region) {
   const uint32_t nt = uint32_t(m.tri.size() / 3);
+  std::vector<uint8_t> near(nt, 0);
+  for (size_t v = 0; v + 1 < m.starStart.size(); ++v)
+    if (region[v])
+      for (uint32_t k = m.starStart[v]; k < m.starStart[v + 1]; ++k) near[m.starTri[k]] = 1;
   size_t flips = 0;
-  for (uint32_t t0 = 0; t0 < nt; ++t0)
+  for (uint32_t t0 = 0; t0 < nt; ++t0) {
+    if (!near[t0]) continue;
     for (int c = 0; c < 3; ++c) {
       uint32_t* v0 = &m.tri[3 * size_t(t0)];
       const uint32_t t1 = m.adj[3 * size_t(t0) + c];
@@ -454,8 +467,10 @@ size_t flipPass(Mesh& m, std::vector<uint8_t>& touched, const std::vector<uint8_
         const uint32_t ts[2] = {t0, t1};
         rebucket(m, ts, 2);
       }
+      near[t1] = 1;  // t1 > t0: visited later in this pass
       ++flips;
     }
+  }
   return flips;
 }
 
@@ -475,10 +490,23 @@ double minAngleDeg3Approx(const Vec3& a, const Vec3& b, const Vec3& c) { return 
 
 OptimizeStats optimizePatch(std::vector<double>& xy, std::vector<uint32_t>& triangles, std::vector<Vec3>& pos,
                             const std::vector<uint8_t>& fixed, const LiftFn& lift, const OptimizeOptions& o,
-                            const std::vector<uint8_t>& active0, const SurfaceSamples& guard) {
+                            const std::vector<uint8_t>& active0, const SurfaceSamples& guard, OptimizeCache* cache) {
   Mesh m{xy, triangles, pos, fixed, {}, {}, {}, {}, nullptr, {}, {}, {}};
   OptimizeStats st;
-  m.cacheAll();
+  const size_t nt = triangles.size() / 3;
+  // the previous call's min angles stand where no vertex moved since (the same positions give
+  // the same values); its adjacency stands as the triangles are the same
+  const bool reuse = cache && active0.size() == xy.size() / 2 && cache->minAngle.size() == nt && cache->adjacency.size() == 3 * nt;
+  if (reuse) {
+    m.minAngle.swap(cache->minAngle);
+    m.adj.swap(cache->adjacency);
+    for (size_t t = 0; t < nt; ++t) {
+      const uint32_t* v = &triangles[3 * t];
+      if (active0[v[0]] || active0[v[1]] || active0[v[2]]) m.minAngle[t] = m.triMin(uint32_t(t));
+    }
+  } else {
+    m.cacheAll();
+  }
   if (!guard.pos.empty()) {
     m.guard = &guard;
     bucketGuard(m);
@@ -490,7 +518,7 @@ OptimizeStats optimizePatch(std::vector<double>& xy, std::vector<uint32_t>& tria
   // in the previous pass
   std::vector<uint8_t> active = active0.size() == nv ? active0 : std::vector<uint8_t>(nv, 1), nextActive(nv, 0), changed(nv, 0);
   m.buildStars();
-  buildAdjacency(m);
+  if (!reuse) buildAdjacency(m);
   size_t flips = 0;
   for (int it = 0; it < o.maxIterations; ++it) {
     if (flips > 0) m.buildStars();  // moves keep the connectivity; flips change it
@@ -542,6 +570,10 @@ OptimizeStats optimizePatch(std::vector<double>& xy, std::vector<uint32_t>& tria
     st.meanMinAngleAfter = now;
     if (now - last < o.tolerance * std::max(last, 1e-9)) break;
     last = now;
+  }
+  if (cache) {
+    cache->minAngle.swap(m.minAngle);
+    cache->adjacency.swap(m.adj);
   }
   return st;
 }

@@ -58,9 +58,17 @@ struct SurfaceSamples {
 //! vertex does not move. Edges used by one triangle only are boundary edges and never flip.
 //! active: the vertices the first pass visits (empty: all); later passes visit those whose star
 //! changed in the pass before.
+//! cache (optional): what the previous call on the same triangles left, for this one to reuse,
+//! and on return what this call leaves. Used only with an `active` list: the caller clears it
+//! when the triangles or positions changed otherwise than at `active` vertices since.
+struct OptimizeCache {
+  std::vector<double> minAngle;  //!< per triangle, its 3D min angle (degrees)
+  std::vector<uint32_t> adjacency;  //!< per triangle side, the triangle across it
+};
 OptimizeStats optimizePatch(std::vector<double>& xy, std::vector<uint32_t>& triangles, std::vector<features::Vec3>& pos,
                             const std::vector<uint8_t>& fixed, const LiftFn& lift, const OptimizeOptions& options,
-                            const std::vector<uint8_t>& active = {}, const SurfaceSamples& guard = {});
+                            const std::vector<uint8_t>& active = {}, const SurfaceSamples& guard = {},
+                            OptimizeCache* cache = nullptr);
 
 //! Smallest angle of the 3D triangle (a, b, c), in degrees.
 double minAngleDeg3(const features::Vec3& a, const features::Vec3& b, const features::Vec3& c);

@@ -116,6 +116,8 @@ struct PatchWork {
   std::vector<uint32_t> localToGlobal;  // planar vertex -> output vertex (samples first)
   std::vector<F::Vec3> interiorPositions;  // positions of planar vertices that are interior
   std::vector<int> layoutFaces;             // per planar vertex: the flattened face of its lift, -1 none
+  std::vector<uint32_t> liftFaces;          // per planar vertex: the input (g_) face of its latest lift, kNone none
+  optimization::OptimizeCache optimizeCache;  // the latest optimizePatch's, for the next one on this meshing
   std::vector<uint32_t> triangles;         // planar triangles (local indices)
   std::vector<double> planarPoints;        // planar positions of the latest meshing
   uint64_t builtAt = 0;
@@ -159,7 +161,7 @@ class Pipeline {
   std::vector<Piece> stretch(const PatchWork& w, const BoundaryPoint& p0, const BoundaryPoint& p1, size_t points) const;
   uint32_t addSplitSample(const PatchWork& w, const std::vector<BoundaryPoint>& bp, uint32_t s, double t);
   double curveKey(uint32_t c, uint32_t sample) const;
-  MeshBuffers stitch(std::vector<uint32_t>& trianglePatch) const;
+  MeshBuffers stitch(std::vector<uint32_t>& trianglePatch, std::vector<uint32_t>& vertexFace) const;
   std::vector<RemeshPatch> patchSnapshot(const MeshBuffers& out) const;
   std::vector<double> cornerWedgeAngles(const F::PatchMesh& pm) const;
   void indexExemptWedges(const std::vector<uint8_t>& exemptVertex);
@@ -698,6 +700,9 @@ void Pipeline::meshPatch(uint32_t p, bool splitSegments) {
   w.localToGlobal.assign(nv, kNone);
   w.interiorPositions.assign(nv, F::Vec3{});
   w.layoutFaces.assign(nv, -1);
+  w.liftFaces.assign(nv, kNone);
+  w.optimizeCache = {};
+  int lastFace = -1;
   for (size_t v = 0; v < nv; ++v) {
     if (v < bp.size()) {
       w.localToGlobal[v] = bp[v].sample;
@@ -711,11 +716,15 @@ void Pipeline::meshPatch(uint32_t p, bool splitSegments) {
       w.localToGlobal[v] = addSplitSample(w, bp, bs, bt);
       continue;
     }
+    // the walk starts from the previous vertex's face (consecutive refinement vertices are
+    // mostly near each other); a hinted locate finds the same point as the grid search
     PullbackPoint q;
-    if (!liftPoint(w, pmsh.points[2 * v], pmsh.points[2 * v + 1], q))
+    if (!liftPoint(w, pmsh.points[2 * v], pmsh.points[2 * v + 1], q, lastFace))
       fail(Code::NumericalFailure, Stage::Lift, "a refinement vertex lies outside the flattened patch");
+    lastFace = q.layoutFace;
     w.interiorPositions[v] = {q.position[0], q.position[1], q.position[2]};
     w.layoutFaces[v] = q.layoutFace;
+    w.liftFaces[v] = w.pm.faceInput[q.face];
   }
   w.triangles = pmsh.triangles;
   w.planarPoints = pmsh.points;
@@ -744,6 +753,7 @@ void Pipeline::optimizeMesh(uint32_t p, const std::vector<uint8_t>& active) {
     PullbackPoint q;
     if (!liftPoint(w, x, y, q, w.layoutFaces[v])) return false;
     w.layoutFaces[v] = q.layoutFace;
+    w.liftFaces[v] = w.pm.faceInput[q.face];  // of the latest candidate: a hint, near the kept one
     out = {q.position[0], q.position[1], q.position[2]};
     return true;
   };
@@ -757,7 +767,9 @@ void Pipeline::optimizeMesh(uint32_t p, const std::vector<uint8_t>& active) {
     for (size_t v = 0; v < guard.pos.size(); ++v) guard.pos[v] = g_.positions[w.pm.vertexInput[v]];
     guard.tolerance = opt_.chordTolerance >= 0 ? opt_.chordTolerance : opt_.chordToleranceRel * sizing_.diagonal;
   }
-  optimization::OptimizeStats st = optimization::optimizePatch(w.planarPoints, w.triangles, pos, fixed, lift, oo, active, guard);
+  // between two optimizations of one meshing only slides move vertices, and `active` has every
+  // vertex of a slid sample's stars
+  optimization::OptimizeStats st = optimization::optimizePatch(w.planarPoints, w.triangles, pos, fixed, lift, oo, active, guard, &w.optimizeCache);
   for (size_t v = 0; v < nv; ++v)
     if (!fixed[v]) w.interiorPositions[v] = pos[v];
   rep_.optimizeMoves += st.moves;
@@ -809,9 +821,15 @@ std::vector<std::vector<uint8_t>> Pipeline::slideSamples() {
     std::vector<uint32_t> fill(st.start.begin(), st.start.end() - 1);
     for (size_t t = 0; t < nt; ++t)
       for (int c = 0; c < 3; ++c) st.tri[fill[w.triangles[3 * t + c]]++] = uint32_t(t);
-    st.minAngle.resize(nt);
-    for (size_t t = 0; t < nt; ++t)
-      st.minAngle[t] = optimization::minAngleDeg3(pos3(w, w.triangles[3 * t]), pos3(w, w.triangles[3 * t + 1]), pos3(w, w.triangles[3 * t + 2]));
+    // the patch's latest optimization left these very values (minAngleDeg3 of the same
+    // positions: only optimizations and slides move vertices, and each keeps them current)
+    if (work_[p]->optimizeCache.minAngle.size() == nt) {
+      st.minAngle.swap(work_[p]->optimizeCache.minAngle);
+    } else {
+      st.minAngle.resize(nt);
+      for (size_t t = 0; t < nt; ++t)
+        st.minAngle[t] = optimization::minAngleDeg3(pos3(w, w.triangles[3 * t]), pos3(w, w.triangles[3 * t + 1]), pos3(w, w.triangles[3 * t + 2]));
+    }
     const auto& loop = w.pm.boundaryLoops[0];
     for (uint32_t k = 0; k < loop.size(); ++k) st.loopOfEdge[g_.faceEdges[w.pm.faceInput[loop[k].face]][loop[k].corner]].push_back(k);
     for (uint32_t v = 0; v < nv; ++v)
@@ -1019,15 +1037,36 @@ std::vector<std::vector<uint8_t>> Pipeline::slideSamples() {
     if (slides == 0) break;
     activeS.swap(nextS);
   }
+  // the min angles, kept exact through the slides, go back for the next optimization
+  for (uint32_t p = 0; p < work_.size(); ++p) work_[p]->optimizeCache.minAngle.swap(stars[p].minAngle);
   optimizeSeconds_ += elapsed(t0);
   return slid;
 }
 
-MeshBuffers Pipeline::stitch(std::vector<uint32_t>& trianglePatch) const {
+// vertexFace: per output vertex, a face of the validated input it lies on or near (its lift's,
+// or one beside its curve sample's input edge or vertex), kNone when unknown: a hint for the
+// report's distance check.
+MeshBuffers Pipeline::stitch(std::vector<uint32_t>& trianglePatch, std::vector<uint32_t>& vertexFace) const {
   MeshBuffers out;
-  const size_t nS = cm_.samples.size();
-  for (const auto& s : cm_.samples) out.positions.insert(out.positions.end(), {s.position.x, s.position.y, s.position.z});
+  size_t nv = cm_.samples.size(), nt = 0;
+  for (const auto& w : work_) {
+    for (uint32_t g : w->localToGlobal) nv += g == kNone;
+    nt += w->triangles.size() / 3;
+  }
+  out.positions.reserve(3 * nv);
+  out.triangles.reserve(3 * nt);
   trianglePatch.clear();
+  trianglePatch.reserve(nt);
+  vertexFace.assign(nv, kNone);
+  auto inputFace = [&](uint32_t gf) { return gf < pre_.faceOrigin.size() ? pre_.faceOrigin[gf] : kNone; };
+  for (size_t i = 0; i < cm_.samples.size(); ++i) {
+    const F::CurveSample& s = cm_.samples[i];
+    out.positions.insert(out.positions.end(), {s.position.x, s.position.y, s.position.z});
+    uint32_t e = s.edge;
+    if (e == kNone && s.vertex != kNone && s.vertex < g_.vertexCount && g_.vertexEdgeStart[s.vertex] < g_.vertexEdgeStart[s.vertex + 1])
+      e = g_.vertexEdgeIds[g_.vertexEdgeStart[s.vertex]];
+    if (e != kNone && e < g_.edgeCount()) vertexFace[i] = inputFace(g_.edgeFaces[e][0] != kNone ? g_.edgeFaces[e][0] : g_.edgeFaces[e][1]);
+  }
   for (uint32_t p = 0; p < work_.size(); ++p) {
     const PatchWork& w = *work_[p];
     std::vector<uint32_t> id(w.localToGlobal.size());
@@ -1037,6 +1076,7 @@ MeshBuffers Pipeline::stitch(std::vector<uint32_t>& trianglePatch) const {
         id[v] = uint32_t(out.positions.size() / 3);
         const auto& q = w.interiorPositions[v];
         out.positions.insert(out.positions.end(), {q.x, q.y, q.z});
+        if (w.liftFaces[v] != kNone) vertexFace[id[v]] = inputFace(w.liftFaces[v]);
       }
     }
     for (size_t t = 0; t < w.triangles.size(); t += 3) {
@@ -1044,7 +1084,6 @@ MeshBuffers Pipeline::stitch(std::vector<uint32_t>& trianglePatch) const {
       trianglePatch.push_back(p);
     }
   }
-  (void)nS;
   return out;
 }
 
@@ -1075,21 +1114,42 @@ constexpr double kCollapsedDeg = 1e-3;
 // Triangles whose three vertices another triangle also has; of each such pair, the one in the
 // patch with more triangles (the one to re-mesh with a vertex inside it). Ascending.
 std::vector<size_t> doubledTriangles(const MeshBuffers& m, const std::vector<uint32_t>& trianglePatch) {
-  std::vector<std::array<uint32_t, 4>> keys(m.triangleCount());
+  // the triangles' sorted vertex triples in (v0, v1, v2, t) order: a counting sort on v0, then
+  // an insertion sort of each (short) bucket on (v1, v2), stable, so t ascending within ties
+  const size_t nt = m.triangleCount(), nv = m.vertexCount();
+  std::vector<std::array<uint32_t, 3>> sorted(nt);
+  std::vector<uint32_t> start(nv + 1, 0);
   std::vector<size_t> patchSize;
-  for (size_t t = 0; t < m.triangleCount(); ++t) {
+  for (size_t t = 0; t < nt; ++t) {
     std::array<uint32_t, 3> v{m.triangles[3 * t], m.triangles[3 * t + 1], m.triangles[3 * t + 2]};
     std::sort(v.begin(), v.end());
-    keys[t] = {v[0], v[1], v[2], uint32_t(t)};
+    sorted[t] = v;
+    ++start[v[0] + 1];
     if (trianglePatch[t] >= patchSize.size()) patchSize.resize(trianglePatch[t] + 1, 0);
     ++patchSize[trianglePatch[t]];
   }
-  std::sort(keys.begin(), keys.end());
+  for (size_t v = 0; v < nv; ++v) start[v + 1] += start[v];
+  std::vector<uint32_t> order(nt);
+  {
+    std::vector<uint32_t> fill(start.begin(), start.end() - 1);
+    for (size_t t = 0; t < nt; ++t) order[fill[sorted[t][0]]++] = uint32_t(t);
+  }
+  auto less = [&](uint32_t a, uint32_t b) {
+    return sorted[a][1] != sorted[b][1] ? sorted[a][1] < sorted[b][1] : sorted[a][2] < sorted[b][2];
+  };
   std::vector<size_t> out;
-  for (size_t i = 0; i + 1 < keys.size(); ++i) {
-    if (keys[i][0] != keys[i + 1][0] || keys[i][1] != keys[i + 1][1] || keys[i][2] != keys[i + 1][2]) continue;
-    const uint32_t a = keys[i][3], b = keys[i + 1][3];
-    out.push_back(patchSize[trianglePatch[a]] >= patchSize[trianglePatch[b]] ? a : b);
+  for (size_t v = 0; v < nv; ++v) {
+    uint32_t* lo = order.data() + start[v];
+    uint32_t* hi = order.data() + start[v + 1];
+    if (hi - lo > 24) std::stable_sort(lo, hi, less);
+    else
+      for (uint32_t* i = lo + 1; i < hi; ++i)
+        for (uint32_t* j = i; j > lo && less(*j, *(j - 1)); --j) std::swap(*j, *(j - 1));
+    for (uint32_t* i = lo; i + 1 < hi; ++i) {
+      const uint32_t a = i[0], b = i[1];
+      if (sorted[a] != sorted[b]) continue;
+      out.push_back(patchSize[trianglePatch[a]] >= patchSize[trianglePatch[b]] ? a : b);
+    }
   }
   std::sort(out.begin(), out.end());
   out.erase(std::unique(out.begin(), out.end()), out.end());
@@ -1110,6 +1170,30 @@ double triangleMinAngle(const MeshBuffers& m, size_t t, double* maxAngle = nullp
   }
   if (maxAngle) *maxAngle = hi;
   return lo;
+}
+
+//! Whether triangleMinAngle(m, t) < boundDeg, mostly without its atan2s: the corner cosines
+//! u·v / (|u||v|), within a few ulp of the exact ones, decide when they are more than 1e-9 from
+//! cosBound = cos(boundDeg) (|Δcos| ≤ |Δangle|, and the atan2 angles are within a few 1e-16 rad
+//! of the exact ones); a triangle near the bound, or with sides near under- or overflow, is
+//! measured.
+bool minAngleBelow(const MeshBuffers& m, size_t t, double boundDeg, double cosBound) {
+  F::Vec3 p[3];
+  for (int c = 0; c < 3; ++c) {
+    uint32_t v = m.triangles[3 * t + c];
+    p[c] = {m.positions[3 * v], m.positions[3 * v + 1], m.positions[3 * v + 2]};
+  }
+  constexpr double kApart = 1e-9;
+  bool above = true;
+  for (int c = 0; c < 3; ++c) {
+    const F::Vec3 u = p[(c + 1) % 3] - p[c], v = p[(c + 2) % 3] - p[c];
+    const double uu = F::dot(u, u), vv = F::dot(v, v);
+    if (!(uu >= 1e-200 && uu <= 1e200 && vv >= 1e-200 && vv <= 1e200)) return triangleMinAngle(m, t) < boundDeg;
+    const double cosA = F::dot(u, v) / (std::sqrt(uu) * std::sqrt(vv));
+    if (cosA > cosBound + kApart) return true;
+    above = above && cosA < cosBound - kApart;
+  }
+  return above ? false : triangleMinAngle(m, t) < boundDeg;
 }
 
 RemeshResult Pipeline::run(const MeshBuffers& input) {
@@ -1227,10 +1311,13 @@ RemeshResult Pipeline::run(const MeshBuffers& input) {
   std::vector<uint8_t> exemptVertex;
   MeshBuffers bestOut;
   std::vector<uint32_t> bestTriPatch;
+  std::vector<uint32_t> vertexFace, bestVertexFace;  // stitch(): an input face per output vertex (a hint)
+  bool outIsBest = false;  // the best round is the current one: kept in out (moved, not copied)
   size_t bestBad = SIZE_MAX, bestCollapsed = SIZE_MAX, bestDoubled = SIZE_MAX;
   int staleRounds = 0;  // certificate rounds in a row that did not beat the best
   std::vector<std::vector<uint32_t>> bestCurveSamples;
   std::vector<RemeshPatch> bestPatches;
+  const double cosBound = dmath::cos(opt_.minAngleDeg * kPi / 180.0), cosCollapsed = dmath::cos(kCollapsedDeg * kPi / 180.0);
   for (int cert = 0;; ++cert) {
     // Refine every patch that needs it; a refinement that splits a boundary segment adds a
     // curve sample there, which the patches on the other side of that curve must include: they
@@ -1274,7 +1361,13 @@ RemeshResult Pipeline::run(const MeshBuffers& input) {
     }
     rep_.conformingRounds = std::max(rep_.conformingRounds, round);
     rep_.seconds.refine += elapsed(t0);
-    out = stitch(triPatch);
+    if (outIsBest) {
+      bestOut = std::move(out);
+      bestTriPatch = std::move(triPatch);
+      bestVertexFace = std::move(vertexFace);
+      outIsBest = false;
+    }
+    out = stitch(triPatch, vertexFace);
     // exempt corners: input vertices where the input's own feature or boundary curves make a
     // wedge below the bound. Cuts are ours (not features): a small angle where a cut meets a
     // curve is not exempt.
@@ -1298,9 +1391,8 @@ RemeshResult Pipeline::run(const MeshBuffers& input) {
     // never wins by trading bad triangles for collapsed ones.
     size_t bad = 0, collapsed = 0;
     for (size_t t = 0; t < out.triangleCount(); ++t) {
-      const double a = triangleMinAngle(out, t);
-      if (a < kCollapsedDeg) ++collapsed;
-      if (a < opt_.minAngleDeg && exemptCornerOf(out, t, exemptVertex) == kNone) ++bad;
+      if (minAngleBelow(out, t, kCollapsedDeg, cosCollapsed)) ++collapsed;
+      if (minAngleBelow(out, t, opt_.minAngleDeg, cosBound) && exemptCornerOf(out, t, exemptVertex) == kNone) ++bad;
     }
     // the same three samples meshed as a triangle by two patches (a corner wedge between two
     // curves that both patches border, closed by one triangle on each side): the stitched
@@ -1311,8 +1403,7 @@ RemeshResult Pipeline::run(const MeshBuffers& input) {
       bestDoubled = doubled.size();
       bestBad = bad;
       bestCollapsed = collapsed;
-      bestOut = out;
-      bestTriPatch = triPatch;
+      outIsBest = true;
       bestCurveSamples = cm_.curveSamples;
       if (opt_.returnPatches) bestPatches = patchSnapshot(out);
       staleRounds = 0;
@@ -1348,7 +1439,7 @@ RemeshResult Pipeline::run(const MeshBuffers& input) {
       w.needsMesh = true;
     }
     for (size_t t = 0; t < out.triangleCount(); ++t) {
-      if (triangleMinAngle(out, t) >= opt_.minAngleDeg || exemptCornerOf(out, t, exemptVertex) != kNone) continue;
+      if (!minAngleBelow(out, t, opt_.minAngleDeg, cosBound) || exemptCornerOf(out, t, exemptVertex) != kNone) continue;
       PatchWork& w = *work_[triPatch[t]];
       const uint32_t* lt = &w.triangles[3 * (t - firstTri[triPatch[t]])];
       double cx = 0, cy = 0, longest = 0;
@@ -1364,8 +1455,11 @@ RemeshResult Pipeline::run(const MeshBuffers& input) {
     }
     ++rep_.certificateRounds;
   }
-  out = std::move(bestOut);
-  triPatch = std::move(bestTriPatch);
+  if (!outIsBest) {
+    out = std::move(bestOut);
+    triPatch = std::move(bestTriPatch);
+    vertexFace = std::move(bestVertexFace);
+  }
   cm_.curveSamples = std::move(bestCurveSamples);
   rep_.seconds.lift = liftSeconds_;
   rep_.seconds.refine -= liftSeconds_ + optimizeSeconds_;
@@ -1373,8 +1467,13 @@ RemeshResult Pipeline::run(const MeshBuffers& input) {
   rep_.seconds.stitch = elapsed(t0);
   checkOutputCounts(out.vertexCount(), out.triangleCount(), opt_);  // remesh/limits.h
 
-  // report
-  auto as = quality::angleStats(out);
+  // report. The patches' work is done: their memory goes back to the heap first, where the
+  // report's buffers find it (fresh pages cost a fault each).
+  rep_.patches = work_.size();
+  for (const auto& w : work_) rep_.flowIterations.push_back(w->flat.report.iterations);
+  work_.clear();
+  std::vector<double> triMinRad;  // per triangle, NaN when degenerate
+  auto as = quality::angleStats(out, &triMinRad);
   rep_.triangles = out.triangleCount();
   rep_.vertices = out.vertexCount();
   rep_.minAngle = as.minAngle;
@@ -1410,14 +1509,15 @@ RemeshResult Pipeline::run(const MeshBuffers& input) {
       }
     }
     if (ex) continue;
-    double a = triangleMinAngle(out, t);
+    // the same value as triangleMinAngle (the same atan2s; degrees are monotone in radians)
+    const double a = std::isnan(triMinRad[t]) ? triangleMinAngle(out, t) : triMinRad[t] * 180.0 / kPi;
     rep_.minAngleOutsideExempt = std::min(rep_.minAngleOutsideExempt, a);
     if (a < opt_.minAngleDeg) ++rep_.trianglesBelowBoundOutsideExempt;
   }
-  auto es = quality::edgeStats(out);
-  rep_.meanEdgeLength = es.meanLength;
-  rep_.delaunayFraction = es.delaunayFraction;
-  auto ti = quality::topologySummary(in), to = quality::topologySummary(out);
+  const quality::EdgeTopology et = quality::edgeStatsAndTopology(out);
+  rep_.meanEdgeLength = et.edges.meanLength;
+  rep_.delaunayFraction = et.edges.delaunayFraction;
+  const quality::TopologySummary ti = quality::topologySummary(in), &to = et.topology;
   rep_.topologyPreserved = ti.components == to.components && ti.boundaryLoops == to.boundaryLoops &&
                            ti.genus == to.genus && to.nonManifoldEdges == 0;
   // feature curves kept: every pair of consecutive samples is an output edge
@@ -1450,17 +1550,22 @@ RemeshResult Pipeline::run(const MeshBuffers& input) {
   rep_.sharpEdges = seg_.sharpEdgeCount;
   rep_.cutEdges = seg_.cutEdgeCount;
   rep_.droppedFeatureEdges = seg_.droppedFeatureEdges;
-  rep_.patches = work_.size();
   rep_.curves = seg_.curves.size();
   rep_.curveSamples = cm_.samples.size();
   rep_.patchSplitsForScale = scaleSplits_;
-  for (const auto& w : work_) rep_.flowIterations.push_back(w->flat.report.iterations);
   {
     quality::TriangleMeshDistance dist(in);
     double worst = 0;
     int64_t hint = -1;  // consecutive output vertices are near each other (curves, then patches)
     for (size_t v = 0; v < out.vertexCount(); ++v) {
-      auto hit = dist.closest({out.positions[3 * v], out.positions[3 * v + 1], out.positions[3 * v + 2]}, hint);
+      const quality::Vec3 p{out.positions[3 * v], out.positions[3 * v + 1], out.positions[3 * v + 2]};
+      // the input face the vertex was lifted onto (or one beside its curve sample) bounds its
+      // distance: at most the worst so far, the vertex cannot change the maximum
+      if (vertexFace[v] < in.triangleCount()) {
+        hint = vertexFace[v];
+        if (dist.faceDistanceSquared(vertexFace[v], p) <= worst) continue;
+      }
+      auto hit = dist.closest(p, hint);
       hint = hit.primitive;
       worst = std::max(worst, hit.distanceSquared);
     }

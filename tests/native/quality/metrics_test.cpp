@@ -1,7 +1,11 @@
 #include <doctest/doctest.h>
 
+#include <algorithm>
+#include <array>
 #include <cmath>
+#include <vector>
 
+#include "core/detmath.h"
 #include "quality/metrics.h"
 
 using namespace conformesh;
@@ -67,6 +71,69 @@ TEST_CASE("angle stats: right isosceles triangles, a needle and a degenerate tri
   CHECK(b.maxAngle == 180.0);
   CHECK(b.pctBelow20 == 100.0);
   CHECK(b.minAngleHistogram[0] == 2);
+}
+
+TEST_CASE("angle stats: min and max are those of all three atan2 angles, also for near ties") {
+  // random triangles, isosceles and near-isosceles ones, needles and caps: the statistics skip
+  // the middle angle when the cosines tell the angles apart, so compare with all three
+  MeshBuffers m;
+  uint64_t state = 7;
+  auto uniform = [&state]() {
+    state = state * 6364136223846793005ull + 1442695040888963407ull;
+    return double(state >> 11) * (1.0 / 9007199254740992.0);
+  };
+  auto add = [&m](std::array<double, 9> p) {
+    const uint32_t base = uint32_t(m.positions.size() / 3);
+    m.positions.insert(m.positions.end(), p.begin(), p.end());
+    m.triangles.insert(m.triangles.end(), {base, base + 1, base + 2});
+  };
+  for (int i = 0; i < 2000; ++i) {
+    const double e = i % 4 == 0 ? 0.0 : std::pow(10.0, -16.0 * uniform());  // tie, or nearly
+    const double h = std::pow(10.0, 3.0 - 10.0 * uniform());
+    add({0, 0, 0, 2, 0, 0, 1 + e, h, 0.1 * uniform()});
+    add({uniform(), uniform(), uniform(), uniform(), uniform(), uniform(), uniform(), uniform(), uniform()});
+  }
+  add({0, 0, 0, 1, 0, 0, 0.5, std::sqrt(3.0) / 2, 0});
+  std::vector<double> triMin;
+  const AngleStats s = angleStats(m, &triMin);
+  REQUIRE(triMin.size() == m.triangleCount());
+  double lo = 180, hi = 0;
+  for (size_t f = 0; f < m.triangleCount(); ++f) {
+    Vec3 p[3];
+    for (int c = 0; c < 3; ++c)
+      for (int k = 0; k < 3; ++k) p[c][k] = m.positions[3 * m.triangles[3 * f + c] + k];
+    double a[3];
+    for (int c = 0; c < 3; ++c) {
+      const Vec3& o = p[c];
+      const Vec3 u{p[(c + 1) % 3][0] - o[0], p[(c + 1) % 3][1] - o[1], p[(c + 1) % 3][2] - o[2]};
+      const Vec3 v{p[(c + 2) % 3][0] - o[0], p[(c + 2) % 3][1] - o[1], p[(c + 2) % 3][2] - o[2]};
+      const Vec3 x{u[1] * v[2] - u[2] * v[1], u[2] * v[0] - u[0] * v[2], u[0] * v[1] - u[1] * v[0]};
+      a[c] = dmath::atan2(std::sqrt(x[0] * x[0] + x[1] * x[1] + x[2] * x[2]), u[0] * v[0] + u[1] * v[1] + u[2] * v[2]);
+    }
+    const double mn = std::min({a[0], a[1], a[2]}), mx = std::max({a[0], a[1], a[2]});
+    CHECK(triMin[f] == mn);
+    lo = std::min(lo, mn * (180.0 / 3.14159265358979323846));
+    hi = std::max(hi, mx * (180.0 / 3.14159265358979323846));
+  }
+  CHECK(s.degenerateTriangles == 0);
+  CHECK(s.minAngle == lo);
+  CHECK(s.maxAngle == hi);
+}
+
+TEST_CASE("edge stats and topology at once: the same as each alone") {
+  MeshBuffers two = cube();
+  for (size_t i = 0; i < 24; ++i) two.positions.push_back(two.positions[i] + (i % 3 == 0 ? 5.0 : 0.0));
+  for (size_t i = 0; i < 30; ++i) two.triangles.push_back(two.triangles[i] + 8);  // one open cube
+  const EdgeTopology et = edgeStatsAndTopology(two);
+  const EdgeStats e = edgeStats(two);
+  const TopologySummary t = topologySummary(two);
+  CHECK(et.edges.edges == e.edges);
+  CHECK(et.edges.meanLength == e.meanLength);
+  CHECK(et.edges.delaunayFraction == e.delaunayFraction);
+  CHECK(et.topology.components == t.components);
+  CHECK(et.topology.boundaryLoops == t.boundaryLoops);
+  CHECK(et.topology.boundaryLoops == 1);
+  CHECK(et.topology.euler == t.euler);
 }
 
 TEST_CASE("edge stats: a flat grid split along one diagonal is Delaunay (cocircular ties count)") {
