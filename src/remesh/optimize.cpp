@@ -281,8 +281,8 @@ bool tryMove(Mesh& m, uint32_t v, double x, double y, const LiftFn& lift, double
   double newMin = 180, newSum = 0;
   double fresh[kBuf];
   for (size_t i = 0; i < n; ++i) {
-    double a = i < kBuf ? cornerDeg(corner[i]) : m.triMin(s[i]);  // the same value as triMin
-    if (i < kBuf) fresh[i] = a;
+    double a = n <= kBuf ? cornerDeg(corner[i]) : m.triMin(s[i]);  // the same value as triMin
+    if (n <= kBuf) fresh[i] = a;
     newMin = std::min(newMin, a);
     newSum += a;
   }
@@ -300,7 +300,7 @@ bool tryMove(Mesh& m, uint32_t v, double x, double y, const LiftFn& lift, double
   }
   m.xy[2 * size_t(v)] = x;
   m.xy[2 * size_t(v) + 1] = y;
-  for (size_t i = 0; i < n; ++i) m.minAngle[s[i]] = i < kBuf ? fresh[i] : m.triMin(s[i]);
+  for (size_t i = 0; i < n; ++i) m.minAngle[s[i]] = n <= kBuf ? fresh[i] : m.triMin(s[i]);
   rebucket(m, s, n);
   old = {newMin, newSum};
   return true;

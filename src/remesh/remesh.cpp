@@ -43,14 +43,13 @@ constexpr int kConformingRounds = 8;
 constexpr size_t kMinSplitFaces = 2;
 // Degrees added to the angle bound for the planar refinement (see meshPatch).
 constexpr double kPlanarAngleMargin = 2.0;
-// Shortest boundary piece a patch refinement may split, in target edge lengths (on the surface):
-// a hundredth of the default minEdgeLength (target/10), far below any size the output can mean.
+// Shortest boundary piece a patch refinement may split, in the sizing's smallest edge length
+// (minEdgeLength, target/10 by default), on the surface: far below any size the output can mean.
 // Near a small angle between two curves the refinements of the two sides can keep splitting
-// each other's segments (each side's concentric shells are not the other's); at 1e-6 they went
-// on to 1e-9 of the diagonal, every new triangle there below the bound: camelhead 194k
-// triangles with 6 below the bound, 80k with 9 at 1e-3; mech-holes-shark 60k -> 46k; bunny at
-// a 1.05 % target 7 -> 1 below the bound.
-constexpr double kMinSegmentFactor = 1e-3;
+// each other's segments (each side's concentric shells are not the other's); at 1e-6 target
+// they went on to 1e-9 of the diagonal, every new triangle there below the bound (camelhead: 194k
+// triangles, mostly such shells).
+constexpr double kMinSegmentFactor = 1e-2;
 // Two splits of one input edge closer than this (in target edge lengths) are one sample.
 constexpr double kSameSampleFactor = 1e-9;
 // Default minFeatureLength in target edge lengths: a chain of sharp edges shorter than two
@@ -645,9 +644,10 @@ void Pipeline::meshPatch(uint32_t p, bool splitSegments) {
   // Boundary pieces shorter than this are not split: far below any size the output can mean,
   // and above the resolution at which two splits of one input edge are told apart (the sample
   // dedupe in addSplitSample); refinements that keep splitting each other's segments stop here.
-  // With the largest planar/3D scale of the patch it is at least kMinSegmentFactor · target on
-  // the surface everywhere in the patch.
-  ro.minSegmentLength = kMinSegmentFactor * sizing_.target * *std::max_element(w.scaleSub.begin(), w.scaleSub.end());
+  // A planar length l is l / s on the surface where the planar/3D scale is s: with the patch's
+  // smallest scale the limit is at most kMinSegmentFactor · minLength on the surface anywhere in
+  // the patch (less where the scale is larger), so it never stops a split the sizing asks for.
+  ro.minSegmentLength = kMinSegmentFactor * sizing_.minLength * *std::min_element(w.scaleSub.begin(), w.scaleSub.end());
   // Longest-edge bound of the refinement vs the mean edge length it gives: calibrated so the
   // mean output edge length in flat regions is the target.
   const double kSizeFactor = 1.3;
@@ -1460,6 +1460,9 @@ RemeshResult Pipeline::run(const MeshBuffers& input) {
     triPatch = std::move(bestTriPatch);
     vertexFace = std::move(bestVertexFace);
   }
+  // sized for the last round; the best one may have more vertices (only curve samples, the
+  // first vertices of every round, can be exempt)
+  exemptVertex.resize(out.vertexCount(), 0);
   cm_.curveSamples = std::move(bestCurveSamples);
   rep_.seconds.lift = liftSeconds_;
   rep_.seconds.refine -= liftSeconds_ + optimizeSeconds_;
