@@ -231,3 +231,50 @@ TEST_CASE("feature preservation: a cube keeps its edges; a smooth copy does not"
   CHECK(none.outputFeatureEdges == 0);
   CHECK(none.fractionKept == 0.0);
 }
+
+TEST_CASE("edge stats: the Delaunay count of one edge agrees with the sum of its two opposite angles") {
+  // Two triangles (a, b, c) and (b, a, d) on the edge ab, with c and d at random 3D places
+  // (acute, right, obtuse and near-degenerate opposite angles; folded pairs too). The edge is
+  // locally Delaunay when the angles at c and d sum to at most π, computed here independently
+  // with acos; pairs within 1e-9 of π are ties and skipped (the grid test covers ties).
+  uint64_t state = 0x9e3779b97f4a7c15ull;
+  auto uniform = [&](double lo, double hi) {
+    state = state * 6364136223846793005ull + 1442695040888963407ull;
+    return lo + (hi - lo) * double(state >> 11) / double(1ull << 53);
+  };
+  auto angleAt = [](const std::array<double, 3>& p, const std::array<double, 3>& q, const std::array<double, 3>& r) {
+    double u[3], w[3];
+    for (int k = 0; k < 3; ++k) u[k] = q[k] - p[k], w[k] = r[k] - p[k];
+    const double d = u[0] * w[0] + u[1] * w[1] + u[2] * w[2];
+    const double nu = std::sqrt(u[0] * u[0] + u[1] * u[1] + u[2] * u[2]), nw = std::sqrt(w[0] * w[0] + w[1] * w[1] + w[2] * w[2]);
+    return std::acos(std::clamp(d / (nu * nw), -1.0, 1.0));
+  };
+  int delaunay = 0, not_ = 0;
+  for (int i = 0; i < 4000; ++i) {
+    const std::array<double, 3> a{-1, 0, 0}, b{1, 0, 0};
+    // apexes above and below the edge; some right at 90 degrees (on the unit circle), some
+    // almost on the edge's line (angles near 180 degrees), some far (angles near 0)
+    const int kind = i % 4;
+    auto apex = [&](double side) {
+      const double t = uniform(0.05, 3.1);
+      if (kind == 0) return std::array<double, 3>{std::cos(t), side * std::sin(t), uniform(-0.3, 0.3) * std::sin(t)};
+      if (kind == 1) return std::array<double, 3>{uniform(-0.99, 0.99), side * uniform(1e-4, 1e-2), 0.0};
+      if (kind == 2) return std::array<double, 3>{uniform(-2, 2), side * uniform(2, 20), uniform(-1, 1)};
+      return std::array<double, 3>{uniform(-1.5, 1.5), side * uniform(0.01, 2), uniform(-2, 2)};
+    };
+    const std::array<double, 3> c = apex(1), d = apex(-1);
+    const double sum = angleAt(c, a, b) + angleAt(d, b, a);
+    if (std::abs(sum - 3.14159265358979323846) < 1e-9) continue;
+    MeshBuffers m;
+    for (const auto* p : {&a, &b, &c, &d}) m.positions.insert(m.positions.end(), p->begin(), p->end());
+    m.triangles = {0, 1, 2, 1, 0, 3};
+    const bool expected = sum <= 3.14159265358979323846;
+    (expected ? delaunay : not_) += 1;
+    INFO("pair " << i << ": opposite angles sum to " << sum);
+    CHECK(edgeStats(m).delaunayFraction == (expected ? 1.0 : 0.0));
+    CHECK(edgeStatsAndTopology(m).edges.delaunayFraction == (expected ? 1.0 : 0.0));
+  }
+  // both outcomes occur often enough for the test to mean something
+  CHECK(delaunay > 500);
+  CHECK(not_ > 500);
+}
