@@ -73,7 +73,12 @@ export function uvAtlas(mesh: Mesh3, patches: FlatPatch[], patchOfTriangle: Uint
     byId.set(p.id, p);
   }
   const list = [...byId.values()];
-  const boxes = list.map((p) => patchBox(p)!);
+  const boxes: Box2[] = [];
+  for (const p of list) {
+    const b = patchBox(p);
+    if (!b) throw new Error(`patch ${p.id} has no finite planar coordinates: no UV atlas for this remesh`);
+    boxes.push(b);
+  }
   const moves = packBoxes(boxes);
   let x0 = Infinity, y0 = Infinity, x1 = -Infinity, y1 = -Infinity;
   boxes.forEach((b, i) => {

@@ -681,8 +681,12 @@ async function remesh(): Promise<void> {
       applySteps[name] = performance.now() - t;
     };
     // one view per frame: build, let the frame with its render go out, then the next
+    // (a hidden tab draws no frames: then the steps go on without waiting for one, at most a
+    // second per view, so the result is in place and the Remesh button back when it is shown)
+    const frameOrTimeout = (v: Viewport) =>
+      document.hidden ? Promise.resolve() : Promise.race([v.drawn(), new Promise<void>((resolve) => setTimeout(resolve, 1000))]);
     const drawn = async (v: Viewport) => {
-      await v.drawn();
+      await frameOrTimeout(v);
       await nextTask();
     };
     holdLoadPanel(false);
@@ -699,7 +703,7 @@ async function remesh(): Promise<void> {
     await drawn(remeshView);
     if (seq !== loadSeq) return;
     step('panels', () => { qualityTable(); histogram(); legend(); });
-    await Promise.all(views.map((v) => v.drawn()));
+    await Promise.all(views.map((v) => frameOrTimeout(v)));
     if (seq !== loadSeq) return;
     const appliedAt = performance.now();
     Object.assign(lastRemesh, {
