@@ -2,13 +2,17 @@
 
 #include <algorithm>
 #include <cmath>
+#include <fstream>
+#include <iterator>
 #include <set>
+#include <string>
 
 #include "features/curve_mesh.h"
 #include "features/edge_graph.h"
 #include "features/segmentation.h"
 #include "features/sizing.h"
 #include "features/test_shapes.h"
+#include "mesh/mesh_io.h"
 
 using namespace conformesh;
 using namespace conformesh::features;
@@ -421,4 +425,44 @@ TEST_CASE("features: straightenCutEars moves a cut across a wedge whose rim is a
   CHECK(std::count(s.edgeKind.begin(), s.edgeKind.end(), EdgeKind::Cut) == 0);
   CHECK(s.patches.size() == 1);
   checkPatchesAreDisks(g, s);
+}
+
+namespace {
+// Vertices where exactly two curve edges meet, both cuts, at less than 45 degrees in 3D: a cut
+// turning back on itself (a hairpin; no mesh gives the patch on its inner side good angles).
+int cutHairpins(const EdgeGraph& g, const Segmentation& s) {
+  int n = 0;
+  for (uint32_t v = 0; v < g.vertexCount; ++v) {
+    uint32_t cuts[2] = {kNone, kNone}, curves = 0, nc = 0;
+    for (uint32_t k = g.vertexEdgeStart[v]; k < g.vertexEdgeStart[v + 1]; ++k) {
+      const uint32_t e = g.vertexEdgeIds[k];
+      if (!s.isCurveEdge(e)) continue;
+      ++curves;
+      if (s.edgeKind[e] == EdgeKind::Cut && nc < 2) cuts[nc++] = e;
+    }
+    if (curves != 2 || nc != 2) continue;
+    const Vec3 a = g.positions[g.otherVertex(cuts[0], v)] - g.positions[v];
+    const Vec3 b = g.positions[g.otherVertex(cuts[1], v)] - g.positions[v];
+    n += angleBetween(a, b) < 45.0 * kPi / 180.0;
+  }
+  return n;
+}
+}  // namespace
+
+TEST_CASE("features: improveCutJunctions' reroutes add no cut hairpins (fertility, t13_data: shortest paths through needle fans did)") {
+  for (const char* name : {"fertility.off", "t13_data.stl"}) {
+    std::ifstream in(std::string(CONFORMESH_DATA_DIR) + "/" + name, std::ios::binary);
+    REQUIRE(in);
+    const std::vector<uint8_t> bytes((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+    ReadOptions ro;
+    ro.fileName = name;
+    const EdgeGraph g = buildEdgeGraph(readMesh(bytes, ro).mesh);
+    const Segmentation before = segment(g, FeatureOptions{});  // junctionScale 0: no reroutes
+    Segmentation after = before;
+    const uint32_t rerouted = improveCutJunctions(g, after, 0.01 * boundingBoxDiagonal(g));
+    INFO(std::string(name) << ": " << rerouted << " cut ends rerouted, hairpins " << cutHairpins(g, before) << " -> " << cutHairpins(g, after));
+    CHECK(rerouted > 0);
+    CHECK(cutHairpins(g, after) <= cutHairpins(g, before));
+    checkPatchesAreDisks(g, after);
+  }
 }
