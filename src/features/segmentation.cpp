@@ -725,9 +725,13 @@ uint32_t straightenCutEars(const EdgeGraph& g, Segmentation& seg) {
           if (!ok || int(valence(v)) - 1 - int(cutB) == 1) continue;
           const double before = wedgeAround(v, rim);
           toggled.clear();
+          auto flipKind = [&](uint32_t e) { seg.edgeKind[e] = seg.edgeKind[e] == EdgeKind::Cut ? EdgeKind::None : EdgeKind::Cut; };
           auto toggle = [&](uint32_t e) {
-            seg.edgeKind[e] = seg.edgeKind[e] == EdgeKind::Cut ? EdgeKind::None : EdgeKind::Cut;
+            flipKind(e);
             toggled.push_back(e);
+          };
+          auto undo = [&]() {
+            for (auto it = toggled.rbegin(); it != toggled.rend(); ++it) flipKind(*it);
           };
           toggle(ea);
           if (cutB) toggle(eb);
@@ -757,8 +761,7 @@ uint32_t straightenCutEars(const EdgeGraph& g, Segmentation& seg) {
             rebuildCurves(g, seg);
             ok = touchedPatchesAreDisks(toggled);
             if (!ok) {
-              for (auto it = toggled.rbegin(); it != toggled.rend(); ++it)
-                seg.edgeKind[*it] = seg.edgeKind[*it] == EdgeKind::Cut ? EdgeKind::None : EdgeKind::Cut;
+              undo();
               rebuildCurves(g, seg);
               continue;
             }
@@ -766,8 +769,7 @@ uint32_t straightenCutEars(const EdgeGraph& g, Segmentation& seg) {
           if (ok) {
             ++moved;
           } else {
-            for (auto it = toggled.rbegin(); it != toggled.rend(); ++it)
-              seg.edgeKind[*it] = seg.edgeKind[*it] == EdgeKind::Cut ? EdgeKind::None : EdgeKind::Cut;
+            undo();
           }
         }
     if (moved == 0) break;
