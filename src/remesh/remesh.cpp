@@ -43,6 +43,19 @@ constexpr int kConformingRounds = 8;
 constexpr size_t kMinSplitFaces = 2;
 // Degrees added to the angle bound for the planar refinement (see meshPatch).
 constexpr double kPlanarAngleMargin = 2.0;
+// Angle (degrees) at the new vertex of the triangle an off-center makes with the shortest edge
+// of a bad triangle. Üngör's off-center (2009) puts it just above the bound: fewest Steiner
+// points, but each such triangle stays near the bound, and a graded band of them (around a
+// narrow CAD chamfer, a small feature wedge) is what kept blade's and camelhead's mean min angle
+// below 50 when nothing else was (optimization passes, flips, gradation; issue 9). 45° is
+// halfway between the bound and equilateral; the new vertex is still farther than 1.3 times
+// that edge from its ends (1 / (2 sin 22.5°)), so refinement keeps growing insertion radii (at
+// 60° the ratio is 1: blade then ran into maxInsertions). Measured at the default target
+// (triangles / mean min angle, blade and camelhead): just above the bound 46k / 48.6 and
+// 80k / 48.8; 40° 49k / 49.5 and 82k / 49.4; 45° 53k / 50.7 and 89k / 50.3; 50° 69k / 51.8 and
+// 107k / 51.2; circumcenters 84k / 50.7 and 138k / 50.4. The other ten models gain 0-0.5° for
+// 0-2% more triangles (bunny 9%).
+constexpr double kOffcenterApexDeg = 45.0;
 // Shortest boundary piece a patch refinement may split, in the sizing's smallest edge length
 // (minEdgeLength, target/10 by default), on the surface: far below any size the output can mean.
 // Near a small angle between two curves the refinements of the two sides can keep splitting
@@ -641,6 +654,11 @@ void Pipeline::meshPatch(uint32_t p, bool splitSegments) {
   ro.diametralLens = true;
   ro.splitSegments = splitSegments;
   ro.minAngleDeg = std::min(opt_.minAngleDeg + kPlanarAngleMargin, 34.0);
+  // off-center factor for kOffcenterApexDeg: the off-center of factor f sits f / (2 tan(θ/2))
+  // shortest-edge lengths from that edge, where it sees the edge under 2 atan(tan(θ/2) / f)
+  // (refine.h); never above the planar default (bounds near 45° would otherwise get it)
+  if (ro.minAngleDeg > 0)
+    ro.offcenterFactor = std::min(0.95, dmath::tan(0.5 * ro.minAngleDeg * kPi / 180) / dmath::tan(0.5 * kOffcenterApexDeg * kPi / 180));
   // Boundary pieces shorter than this are not split: far below any size the output can mean,
   // and above the resolution at which two splits of one input edge are told apart (the sample
   // dedupe in addSplitSample); refinements that keep splitting each other's segments stop here.
