@@ -63,6 +63,7 @@ val reportToJs(const RemeshReport& r) {
   o.set("certificateRounds", r.certificateRounds);
   o.set("optimizeMoves", double(r.optimizeMoves));
   o.set("optimizeFlips", double(r.optimizeFlips));
+  o.set("repairMoves", double(r.repairMoves));
   o.set("estimatedTriangles", r.estimatedTriangles);
   o.set("topologyPreserved", r.topologyPreserved);
   const StageSeconds& t = r.seconds;

@@ -354,6 +354,7 @@ const commands: Record<string, Command> = {
           num('estimatedTriangles', R.estimatedTriangles),
           num('optimizeMoves', R.optimizeMoves),
           num('optimizeFlips', R.optimizeFlips),
+          num('repairMoves', R.repairMoves),
           `"warnings":${JSON.stringify(R.warnings)}`,
           `"topologyPreserved":${R.topologyPreserved ? 'true' : 'false'}`,
           `"seconds":{${(['validate', 'segment', 'flatten', 'curveMesh', 'refine', 'lift', 'optimize', 'stitch', 'report', 'total'] as const)

@@ -52,6 +52,7 @@ std::string reportJson(const RemeshReport& r) {
   num("estimatedTriangles", r.estimatedTriangles);
   num("optimizeMoves", double(r.optimizeMoves));
   num("optimizeFlips", double(r.optimizeFlips));
+  num("repairMoves", double(r.repairMoves));
   s += "\"warnings\":[";
   for (size_t i = 0; i < r.warnings.size(); ++i) s += (i ? "," : "") + jsonString(r.warnings[i]);
   s += "],";

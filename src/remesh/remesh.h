@@ -117,6 +117,7 @@ struct RemeshReport {
   double pctBelow20 = 0, pctBelow26 = 0, pctBelow30 = 0;
   double pctMinAtLeast40 = 0, pctMinAtLeast50 = 0;  //!< % of triangles whose min angle is >= 40°, >= 50°
   size_t optimizeMoves = 0, optimizeFlips = 0;       //!< accepted by the optimization (moves include curve-sample slides)
+  size_t repairMoves = 0;  //!< free vertices moved over the surface where the certificate left a triangle below the bound (remesh/repair.h)
   double minAngleOutsideExempt = 0;  //!< smallest angle over triangles not touching an exempt corner
   size_t trianglesBelowBoundOutsideExempt = 0;
   std::vector<ExemptCorner> exemptCorners;

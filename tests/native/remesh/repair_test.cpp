@@ -1,0 +1,103 @@
+#include <doctest/doctest.h>
+
+#include <algorithm>
+#include <cmath>
+
+#include "remesh/optimize.h"
+#include "remesh/repair.h"
+
+using namespace conformesh;
+using features::Vec3;
+
+namespace {
+// The square [-1, 1]² in the plane z = 0 as an n×n grid of cells, two triangles each.
+MeshBuffers squareSurface(int n) {
+  MeshBuffers m;
+  for (int j = 0; j <= n; ++j)
+    for (int i = 0; i <= n; ++i) m.positions.insert(m.positions.end(), {-1 + 2.0 * i / n, -1 + 2.0 * j / n, 0.0});
+  for (int j = 0; j < n; ++j)
+    for (int i = 0; i < n; ++i) {
+      const uint32_t a = uint32_t(j * (n + 1) + i), b = a + 1, c = a + uint32_t(n + 1), d = c + 1;
+      m.triangles.insert(m.triangles.end(), {a, b, d, a, d, c});
+    }
+  return m;
+}
+
+// A hexagon of radius 0.9 around a centre vertex (index 0) placed at (cx, 0): six triangles.
+MeshBuffers hexFan(double cx) {
+  MeshBuffers m;
+  m.positions = {cx, 0, 0};
+  for (int k = 0; k < 6; ++k) {
+    const double a = k * 3.14159265358979323846 / 3;
+    m.positions.insert(m.positions.end(), {0.9 * std::cos(a), 0.9 * std::sin(a), 0.0});
+  }
+  for (uint32_t k = 0; k < 6; ++k) m.triangles.insert(m.triangles.end(), {0u, 1 + k, 1 + (k + 1) % 6});
+  return m;
+}
+
+Vec3 at(const MeshBuffers& m, uint32_t v) { return {m.positions[3 * v], m.positions[3 * v + 1], m.positions[3 * v + 2]}; }
+
+double minAngle(const MeshBuffers& m, size_t t) {
+  const uint32_t* v = &m.triangles[3 * t];
+  return optimization::minAngleDeg3(at(m, v[0]), at(m, v[1]), at(m, v[2]));
+}
+
+double worst(const MeshBuffers& m) {
+  double w = 180;
+  for (size_t t = 0; t < m.triangleCount(); ++t) w = std::min(w, minAngle(m, t));
+  return w;
+}
+}  // namespace
+
+TEST_CASE("repair: a free vertex near the rim of its star moves over the surface until no triangle is below the bound") {
+  const MeshBuffers surface = squareSurface(8);
+  const std::vector<uint32_t> surfacePatch(surface.triangleCount(), 0);
+  MeshBuffers out = hexFan(0.75);
+  const MeshBuffers before = out;
+  REQUIRE(worst(out) < 30);
+  std::vector<uint32_t> vertexFace(out.vertexCount(), 0);
+  const std::vector<uint32_t> triPatch(out.triangleCount(), 0);
+  std::vector<uint8_t> pinned(out.vertexCount(), 1);
+  pinned[0] = 0;
+  const auto isBad = [&](size_t t) { return minAngle(out, t) < 30; };
+  const repair::RepairStats st = repair::relaxBelowBound(out, vertexFace, triPatch, pinned, surface, surfacePatch, isBad, 30.0, 8);
+  CHECK(st.moves >= 1);
+  CHECK(worst(out) >= 30);
+  CHECK(out.positions[2] == 0.0);  // on the surface
+  for (size_t k = 3; k < out.positions.size(); ++k) CHECK(out.positions[k] == before.positions[k]);  // pinned stay
+  // the vertex's input face was updated to one under it
+  const uint32_t* f = &surface.triangles[3 * size_t(vertexFace[0])];
+  double lo = INFINITY, hi = -INFINITY;
+  for (int c = 0; c < 3; ++c) lo = std::min(lo, surface.positions[3 * f[c]]), hi = std::max(hi, surface.positions[3 * f[c]]);
+  CHECK(out.positions[0] >= lo - 1e-12);
+  CHECK(out.positions[0] <= hi + 1e-12);
+}
+
+TEST_CASE("repair: a move never lands in a patch the star does not cover, and never makes the star worse") {
+  const MeshBuffers surface = squareSurface(8);
+  // faces left of x = 0.5 belong to another patch (across a feature): the centre may not go there
+  std::vector<uint32_t> surfacePatch(surface.triangleCount(), 0);
+  for (size_t t = 0; t < surface.triangleCount(); ++t) {
+    double cx = 0;
+    for (int c = 0; c < 3; ++c) cx += surface.positions[3 * surface.triangles[3 * t + c]] / 3;
+    if (cx < 0.5) surfacePatch[t] = 1;
+  }
+  MeshBuffers out = hexFan(0.75);
+  const double w0 = worst(out);
+  std::vector<uint32_t> vertexFace(out.vertexCount(), 0);
+  const std::vector<uint32_t> triPatch(out.triangleCount(), 0);
+  std::vector<uint8_t> pinned(out.vertexCount(), 1);
+  pinned[0] = 0;
+  const auto isBad = [&](size_t t) { return minAngle(out, t) < 30; };
+  repair::relaxBelowBound(out, vertexFace, triPatch, pinned, surface, surfacePatch, isBad, 30.0, 8);
+  CHECK(out.positions[0] >= 0.5 - 1e-12);
+  CHECK(surfacePatch[vertexFace[0]] == 0);
+  CHECK(worst(out) >= w0);
+  // pinned everywhere: nothing moves
+  MeshBuffers still = hexFan(0.75);
+  const std::vector<uint8_t> allPinned(still.vertexCount(), 1);
+  const auto isBadStill = [&](size_t t) { return minAngle(still, t) < 30; };
+  const repair::RepairStats st = repair::relaxBelowBound(still, vertexFace, triPatch, allPinned, surface, surfacePatch, isBadStill, 30.0, 8);
+  CHECK(st.moves == 0);
+  CHECK(still.positions == hexFan(0.75).positions);
+}
