@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <cstdint>
 
 #include "planar/predicates.h"
 #include "quality/aabb_tree.h"
@@ -121,60 +122,59 @@ double distance2(const Mesh& m, const uint32_t* t, const Vec3& x) {
   return quality::distanceSquared(X, quality::closestPointOnTriangle(X, q(m.pos[t[0]]), q(m.pos[t[1]]), q(m.pos[t[2]])));
 }
 
-// Sort the guard points into the triangles that contain them (a grid over the patch's planar
-// bounding box, about one triangle per cell). Points outside every triangle (beyond a boundary
-// chord) are not tracked.
+// Sort the guard points into the triangles that contain them. Points outside every triangle
+// (beyond a boundary chord) are not tracked.
 void bucketGuard(Mesh& m) {
   const size_t nt = m.tri.size() / 3, ns = m.guard->pos.size();
   m.head.assign(nt, kNoTri);
   m.next.assign(ns, kNoTri);
   m.err.assign(nt, 0.0);
-  if (nt == 0) return;
+  if (nt == 0 || ns == 0) return;
   double lo[2] = {INFINITY, INFINITY}, hi[2] = {-INFINITY, -INFINITY};
   for (size_t i = 0; i < m.xy.size(); ++i) lo[i % 2] = std::min(lo[i % 2], m.xy[i]), hi[i % 2] = std::max(hi[i % 2], m.xy[i]);
-  const int g = std::max(1, std::min(4096, int(std::sqrt(double(nt)))));
+  // a grid over the points (far fewer than the triangles: a patch's input vertices against its
+  // output mesh), about one point per cell; each triangle then tests the points of the cells its
+  // box covers. A point on an edge goes to the first triangle (smallest index) containing it.
+  const int g = std::max(1, std::min(4096, int(std::sqrt(double(ns)))));
   auto cell = [&](double x, int d) {
     const double f = hi[d] > lo[d] ? (x - lo[d]) / (hi[d] - lo[d]) : 0.0;
     return std::clamp(int(f * g), 0, g - 1);
   };
-  // each triangle's cell range, computed once for both passes
-  std::vector<std::array<int, 4>> range(nt);  // i0, j0, i1, j1
+  std::vector<uint32_t> start(size_t(g) * g + 1, 0), items;
+  auto cellOf = [&](uint32_t k) {
+    const double* p = &m.guard->xy[2 * size_t(k)];
+    if (!(p[0] >= lo[0] && p[0] <= hi[0] && p[1] >= lo[1] && p[1] <= hi[1])) return size_t(SIZE_MAX);
+    return size_t(cell(p[1], 1)) * g + cell(p[0], 0);
+  };
+  for (uint32_t k = 0; k < ns; ++k)
+    if (const size_t c = cellOf(k); c != SIZE_MAX) ++start[c + 1];
+  for (size_t c = 0; c + 1 < start.size(); ++c) start[c + 1] += start[c];
+  items.resize(start.back());
+  {
+    std::vector<uint32_t> fill(start.begin(), start.end() - 1);
+    for (uint32_t k = 0; k < ns; ++k)
+      if (const size_t c = cellOf(k); c != SIZE_MAX) items[fill[c]++] = k;
+  }
+  std::vector<uint8_t> placed(ns, 0);
   for (uint32_t t = 0; t < nt; ++t) {
     const uint32_t* v = &m.tri[3 * size_t(t)];
+    int r[4];  // i0, j0, i1, j1
     for (int d = 0; d < 2; ++d) {
-      const double a = std::min({m.p(v[0])[d], m.p(v[1])[d], m.p(v[2])[d]}), b = std::max({m.p(v[0])[d], m.p(v[1])[d], m.p(v[2])[d]});
-      range[t][d] = cell(a, d), range[t][2 + d] = cell(b, d);
+      r[d] = cell(std::min({m.p(v[0])[d], m.p(v[1])[d], m.p(v[2])[d]}), d);
+      r[2 + d] = cell(std::max({m.p(v[0])[d], m.p(v[1])[d], m.p(v[2])[d]}), d);
     }
-  }
-  std::vector<uint32_t> start(size_t(g) * g + 1, 0), items;
-  for (int pass = 0; pass < 2; ++pass) {
-    std::vector<uint32_t> fill(start.begin(), start.end() - 1);
-    for (uint32_t t = 0; t < nt; ++t) {
-      const std::array<int, 4>& r = range[t];
-      for (int j = r[1]; j <= r[3]; ++j)
-        for (int i = r[0]; i <= r[2]; ++i) {
-          const size_t c = size_t(j) * g + i;
-          if (pass == 0) ++start[c + 1];
-          else items[fill[c]++] = t;
+    for (int j = r[1]; j <= r[3]; ++j)
+      for (int i = r[0]; i <= r[2]; ++i) {
+        const size_t c = size_t(j) * g + i;
+        for (uint32_t q = start[c]; q < start[c + 1]; ++q) {
+          const uint32_t k = items[q];
+          if (placed[k] || !contains(m, v, &m.guard->xy[2 * size_t(k)])) continue;
+          placed[k] = 1;
+          m.next[k] = m.head[t];
+          m.head[t] = k;
+          m.err[t] = std::max(m.err[t], distance2(m, v, m.guard->pos[k]));
         }
-    }
-    if (pass == 0) {
-      for (size_t c = 0; c + 1 < start.size(); ++c) start[c + 1] += start[c];
-      items.resize(start.back());
-    }
-  }
-  for (uint32_t k = 0; k < ns; ++k) {
-    const double* p = &m.guard->xy[2 * size_t(k)];
-    if (p[0] < lo[0] || p[0] > hi[0] || p[1] < lo[1] || p[1] > hi[1]) continue;
-    const size_t c = size_t(cell(p[1], 1)) * g + cell(p[0], 0);
-    for (uint32_t i = start[c]; i < start[c + 1]; ++i) {
-      const uint32_t t = items[i];
-      if (!contains(m, &m.tri[3 * size_t(t)], p)) continue;
-      m.next[k] = m.head[t];
-      m.head[t] = k;
-      m.err[t] = std::max(m.err[t], distance2(m, &m.tri[3 * size_t(t)], m.guard->pos[k]));
-      break;
-    }
+      }
   }
 }
 
