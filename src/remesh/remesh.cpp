@@ -53,9 +53,9 @@ constexpr double kPlanarAngleMargin = 2.0;
 // that edge from its ends (1 / (2 sin 22.5°)), so refinement keeps growing insertion radii (at
 // 60° the ratio is 1: blade then ran into maxInsertions). Measured at the default target
 // (triangles / mean min angle, blade and camelhead): just above the bound 46k / 48.6 and
-// 80k / 48.8; 40° 49k / 49.5 and 82k / 49.4; 45° 53k / 50.7 and 89k / 50.3; 50° 69k / 51.8 and
-// 107k / 51.2; circumcenters 84k / 50.7 and 138k / 50.4. The other ten models gain 0-0.5° for
-// 0-2% more triangles (bunny 9%).
+// 80k / 48.8; 40° 49k / 49.5 and 82k / 49.4; 45° 52k / 50.5 and 88k / 50.2; 50° 69k / 51.8 and
+// 107k / 51.2; circumcenters 84k / 50.7 and 138k / 50.4. The other ten models change by
+// -0.2..+0.5° for 0-2% more triangles (bunny 8%).
 constexpr double kOffcenterApexDeg = 45.0;
 // Passes of the last repair over the triangles still below the bound (a hard cap; a pass that
 // moves nothing ends it).
@@ -812,7 +812,7 @@ void Pipeline::optimizeMesh(uint32_t p, const std::vector<uint8_t>& active) {
   // a patch within tolerance/2 of a plane needs no guard: the input patch and every output
   // triangle over it (vertices on the input) lie in that slab and share the boundary curves, so
   // no moving can take the output farther than the tolerance from the input there (a CAD model's
-  // flat faces: the guard's bucketing is a tenth of the optimization's cost)
+  // flat faces; the guard's bucketing was ~8 % of the optimization at fandisk 0.004)
   if (w.slabHalfWidth < 0) w.slabHalfWidth = slabHalfWidth(w.pm);
   if (!(w.slabHalfWidth <= 0.5 * tolerance)) {
     guard.xy = w.flat.uv;

@@ -33,10 +33,6 @@ Vec3 at(const MeshBuffers& m, uint32_t v) {
 quality::Vec3 q3(const Vec3& v) { return {v.x, v.y, v.z}; }
 Vec3 f3(const quality::Vec3& v) { return {v[0], v[1], v[2]}; }
 
-struct Star {
-  std::vector<uint32_t> tris;  // output triangles around the vertex
-};
-
 class Repairer {
  public:
   Repairer(MeshBuffers& out, std::vector<uint32_t>& vertexFace, const std::vector<uint32_t>& triPatch,
