@@ -58,8 +58,9 @@ constexpr double kPlanarAngleMargin = 2.0;
 // -0.2..+0.5° for 0-2% more triangles (bunny 8%).
 constexpr double kOffcenterApexDeg = 45.0;
 // Passes of the last repair over the triangles still below the bound (a hard cap; a pass that
-// moves nothing ends it).
-constexpr int kRepairRounds = 8;
+// moves nothing ends it). Each pass moves a vertex by a fraction of its star at most, and making
+// room takes a few passes (camelhead at 1.05 % of the diagonal: 2 below after 8, 0 after 32).
+constexpr int kRepairRounds = 32;
 // Shortest boundary piece a patch refinement may split, in the sizing's smallest edge length
 // (minEdgeLength, target/10 by default), on the surface: far below any size the output can mean.
 // Near a small angle between two curves the refinements of the two sides can keep splitting

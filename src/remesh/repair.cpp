@@ -25,6 +25,9 @@ constexpr double kSteps[] = {0.25, 0.1};
 // A star may get as far from the input as it was, or this fraction of its shortest edge at the
 // vertex (a corner of a few micro-triangles; the output's distance to the input is far larger).
 constexpr double kDeviationSlack = 0.05;
+// Neighbours of a triangle below the bound make room for it by moving where their own angles
+// under this come closer to it (a squared deficit).
+constexpr double kRoomDeg = 40.0;
 
 Vec3 at(const MeshBuffers& m, uint32_t v) {
   const double* p = &m.positions[3 * size_t(v)];
@@ -50,15 +53,17 @@ class Repairer {
       for (int c = 0; c < 3; ++c) star_[fill[out.triangles[3 * t + c]]++] = uint32_t(t);
   }
 
-  //! Move v to a better place on the surface; true when it moved.
-  bool improve(uint32_t v) {
+  //! Move v to a better place on the surface; true when it moved. Strict: the star's smallest
+  //! angle must rise. Room (a neighbour of a triangle below the bound): the star's deficit below
+  //! kRoomDeg must fall while its smallest angle stays at or above min(its own, the bound).
+  bool improve(uint32_t v, bool room = false) {
     if (v >= pinned_.size() || pinned_[v]) return false;
     const uint32_t* s = &star_[start_[v]];
     const size_t n = start_[v + 1] - start_[v];
     if (n == 0) return false;
     const Vec3 p0 = at(out_, v);
     std::vector<Vec3> normal0(n);
-    double min0 = 180, shortest = INFINITY, dev0 = 0;
+    double min0 = 180, shortest = INFINITY, dev0 = 0, deficit0 = 0;
     size_t below0 = 0;
     Vec3 ring{0, 0, 0}, apex{0, 0, 0}, nsum{0, 0, 0};
     for (size_t i = 0; i < n; ++i) {
@@ -66,6 +71,7 @@ class Repairer {
       const double m0 = optimization::minAngleDeg3(p0, a, b);
       min0 = std::min(min0, m0);
       below0 += m0 < bound_;
+      deficit0 += m0 < kRoomDeg ? (kRoomDeg - m0) * (kRoomDeg - m0) : 0.0;
       normal0[i] = cross(a - p0, b - p0);
       nsum = nsum + normal0[i];
       shortest = std::min({shortest, norm(a - p0), norm(b - p0)});
@@ -96,7 +102,8 @@ class Repairer {
       }
     const double cosTurn = dmath::cos(kMaxNormalTurnDeg * 3.14159265358979323846 / 180.0);
     const double devLimit = std::max(dev0, kDeviationSlack * shortest);
-    double best = min0 + 1e-9;
+    double best = room ? deficit0 - 1e-9 : min0 + 1e-9;
+    const double floor = std::min(min0, bound_);
     Vec3 bestP{};
     int64_t bestFace = -1;
     for (const Vec3& c : cand) {
@@ -108,7 +115,7 @@ class Repairer {
       if (!inStar) continue;  // across a feature (or into a patch the star does not touch)
       const uint32_t* fv = &surface_.triangles[3 * size_t(f)];
       const Vec3 p = f3(quality::closestPointOnTriangle(q3(c), q3(at(surface_, fv[0])), q3(at(surface_, fv[1])), q3(at(surface_, fv[2]))));
-      double mn = 180;
+      double mn = 180, deficit = 0;
       size_t below = 0;
       bool ok = true;
       for (size_t i = 0; i < n && ok; ++i) {
@@ -116,18 +123,19 @@ class Repairer {
         const double m = optimization::minAngleDeg3(p, a, b);
         mn = std::min(mn, m);
         below += m < bound_;
-        if (!(mn > best) || below > below0) ok = false;
+        deficit += m < kRoomDeg ? (kRoomDeg - m) * (kRoomDeg - m) : 0.0;
+        if ((room ? !(mn >= floor) : !(mn > best)) || below > below0) ok = false;
         const Vec3 nn = cross(a - p, b - p);
         if (!(dot(nn, normal0[i]) > cosTurn * norm(nn) * norm(normal0[i]))) ok = false;
       }
-      if (!ok) continue;
+      if (!ok || (room && !(deficit < best))) continue;
       double dev = 0;
       for (size_t i = 0; i < n && dev <= devLimit; ++i) {
         const auto [a, b] = rim(s[i], v);
         dev = std::max(dev, deviation(p, a, b));
       }
       if (!(dev <= devLimit)) continue;
-      best = mn;
+      best = room ? deficit : mn;
       bestP = p;
       bestFace = h.primitive;
     }
@@ -136,6 +144,12 @@ class Repairer {
     q[0] = bestP.x, q[1] = bestP.y, q[2] = bestP.z;
     vertexFace_[v] = uint32_t(bestFace);
     return true;
+  }
+
+  //! Append the vertices of v's star (v included).
+  void neighbours(uint32_t v, std::vector<uint32_t>& out) const {
+    for (uint32_t k = start_[v]; k < start_[v + 1]; ++k)
+      for (int c = 0; c < 3; ++c) out.push_back(out_.triangles[3 * size_t(star_[k]) + c]);
   }
 
  private:
@@ -182,6 +196,16 @@ RepairStats relaxBelowBound(MeshBuffers& out, std::vector<uint32_t>& vertexFace,
     for (size_t t : bad)
       for (int c = 0; c < 3; ++c)
         if (isBad(t) && r.improve(out.triangles[3 * t + c])) ++moved;
+    if (moved == 0) {
+      // nothing of the triangles themselves moves: their free neighbours make room
+      std::vector<uint32_t> ring;
+      for (size_t t : bad)
+        for (int c = 0; c < 3; ++c) r.neighbours(out.triangles[3 * t + c], ring);
+      std::sort(ring.begin(), ring.end());
+      ring.erase(std::unique(ring.begin(), ring.end()), ring.end());
+      for (uint32_t v : ring)
+        if (r.improve(v, true)) ++moved;
+    }
     st.moves += moved;
     if (moved == 0) break;
     std::vector<size_t> still;

@@ -11,6 +11,10 @@
 // point of the input, and a move is kept only when the star's smallest 3D angle gets larger, no
 // star triangle turns by more than kMaxNormalTurnDeg, no star triangle falls below the bound, the point lands in a patch the star already
 // covers (a move never crosses a feature), and the star does not get farther from the input.
+// When no vertex of those triangles can move any more, their free neighbours make room: a
+// neighbour moves where the squared deficit of its star's angles below 40° falls, its star's
+// smallest angle staying at or above the bound (a cut vertex boxed in between a feature and a
+// neighbour whose own triangles are fine; camelhead).
 // A moved vertex keeps its planar coordinates in RemeshResult::patches (they are for display
 // and UVs): there it sits where the refinement put it, a short step from its surface position.
 #pragma once

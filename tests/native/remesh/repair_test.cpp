@@ -101,3 +101,31 @@ TEST_CASE("repair: a move never lands in a patch the star does not cover, and ne
   CHECK(st.moves == 0);
   CHECK(still.positions == hexFan(0.75).positions);
 }
+
+TEST_CASE("repair: a neighbour that is not below the bound makes room for one that is") {
+  // an open fan around a pinned corner O: rays to A (0°, pinned), F (27°), H (59°), B (120°,
+  // pinned). OAF has 27° at O; F alone can only go to just under 30° (OFH would fall below
+  // it); H must first turn toward B, which its own triangles do not ask for
+  const MeshBuffers surface = squareSurface(8);
+  const std::vector<uint32_t> surfacePatch(surface.triangleCount(), 0);
+  MeshBuffers out;
+  out.positions = {0, 0, 0};
+  for (double deg : {0.0, 27.0, 59.0, 120.0}) {
+    const double a = deg * 3.14159265358979323846 / 180;
+    out.positions.insert(out.positions.end(), {0.9 * std::cos(a), 0.9 * std::sin(a), 0.0});
+  }
+  out.triangles = {0, 1, 2, 0, 2, 3, 0, 3, 4};
+  const MeshBuffers before = out;
+  std::vector<uint32_t> vertexFace(out.vertexCount(), 0);
+  const std::vector<uint32_t> triPatch(out.triangleCount(), 0);
+  const std::vector<uint8_t> pinned = {1, 1, 0, 0, 1};
+  const auto isBad = [&](size_t t) { return minAngle(out, t) < 30; };
+  REQUIRE(isBad(0));
+  REQUIRE(!isBad(1));
+  const repair::RepairStats st = repair::relaxBelowBound(out, vertexFace, triPatch, pinned, surface, surfacePatch, isBad, 30.0, 32);
+  CHECK(st.moves >= 2);
+  CHECK(worst(out) >= 30);
+  for (uint32_t v : {0u, 1u, 4u})
+    for (int k = 0; k < 3; ++k) CHECK(out.positions[3 * v + k] == before.positions[3 * v + k]);  // pinned stay
+  for (size_t k = 2; k < out.positions.size(); k += 3) CHECK(out.positions[k] == 0.0);
+}
