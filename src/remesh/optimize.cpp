@@ -348,23 +348,6 @@ bool equilateralTarget(const Mesh& m, uint32_t v, double out[2]) {
   return true;
 }
 
-// Centroid of the vertices of v's star (v itself excluded; each neighbour counted once per
-// triangle, which weights it by the triangles it shares with v).
-bool neighbourCentroid(const Mesh& m, uint32_t v, double out[2]) {
-  double sx = 0, sy = 0;
-  int n = 0;
-  for (uint32_t k = m.starStart[v]; k < m.starStart[v + 1]; ++k) {
-    const uint32_t* t = &m.tri[3 * size_t(m.starTri[k])];
-    for (int c = 0; c < 3; ++c)
-      if (t[c] != v) sx += m.p(t[c])[0], sy += m.p(t[c])[1], ++n;
-  }
-  if (n == 0) return false;
-  out[0] = sx / n;
-  out[1] = sy / n;
-  return true;
-}
-
-
 // Flip guard: with t0 = (c0, x, c1) and t1 = (c1, y, c0) in place of the current two, would the
 // guard keep the flip? m is left as it was.
 bool guardAcceptsFlip(Mesh& m, uint32_t t0, uint32_t t1, uint32_t c0, uint32_t x, uint32_t c1, uint32_t y) {
@@ -528,17 +511,16 @@ OptimizeStats optimizePatch(std::vector<double>& xy, std::vector<uint32_t>& tria
       const double x = xy[2 * size_t(v)], y = xy[2 * size_t(v) + 1];
       StarQuality q = starQuality(m, v);
       // candidates, the first accepted wins: the mean of the star's equilateral apexes, the ODT
-      // position, the centroid of the neighbours (Laplacian: helps where a big star triangle
-      // pulls the ODT position off), then a half step toward the first (four lifts at most, as
-      // many as before it came: half steps toward ODT and centroid gave 0.03 degrees more mean
-      // for a fifth of the optimization time at fandisk 0.004)
-      // (each computed only when the ones before it were rejected: the first is taken about
-      // half the time)
-      double eq[2], t[2] = {x, y}, l[2] = {x, y};
+      // position, then a half step toward the first (three lifts at most; half steps toward ODT
+      // too gave 0.03 degrees more mean for a fifth of the optimization time at fandisk 0.004).
+      // Each is computed only when the ones before it were rejected: the first is taken about
+      // half the time. The neighbours' centroid (Laplacian) was a candidate until session 6:
+      // after the first two it was never accepted on the 12 models (0 of ~480k tries; 18 % of
+      // the lifts at fandisk 0.004)
+      double eq[2], t[2] = {x, y};
       const bool eqOk = equilateralTarget(m, v, eq);
       bool moved = eqOk && tryMove(m, v, eq[0], eq[1], lift, o.minAngleDeg, q);
       if (!moved && odtTarget(m, v, t)) moved = tryMove(m, v, t[0], t[1], lift, o.minAngleDeg, q);
-      if (!moved && neighbourCentroid(m, v, l)) moved = tryMove(m, v, l[0], l[1], lift, o.minAngleDeg, q);
       if (!moved && eqOk) moved = tryMove(m, v, 0.5 * (x + eq[0]), 0.5 * (y + eq[1]), lift, o.minAngleDeg, q);
       // a star still under the bound: a local search for a better min angle (8 directions, two
       // step lengths relative to the star's shortest edge at v)

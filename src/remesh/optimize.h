@@ -3,7 +3,7 @@
 // Vertex moves toward the mean of the star's equilateral apexes (each star triangle's ideal
 // place for the vertex: follows a graded mesh), the optimal Delaunay triangulation position
 // (ODT: the area-weighted mean of the circumcenters of the star; Chen–Xu 2004, Alliez et al. 2005
-// "Variational tetrahedral meshing"), the neighbours' centroid, and half steps; and edge flips.
+// "Variational tetrahedral meshing"), and a half step toward the first; and edge flips.
 // Both are done in the conformal plane of the patch, where the planar mesh stays a valid
 // triangulation, and both are accepted only when the lifted 3D triangles get better: the star's
 // smallest 3D angle never drops below the bound (or below its own value when it is already under
