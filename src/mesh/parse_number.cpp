@@ -222,7 +222,15 @@ size_t formatDouble(double v, char* out) {
     c.clear();
     appendDigits(c, neg, d, prec, x);
     double back;
-    if (parseDouble(c.data, c.data + c.n, back) && back == v) {
+#if defined(__cpp_lib_to_chars) && __cpp_lib_to_chars >= 201611L
+    // from_chars is correctly rounded, as parseDouble is (the same value, so the same choice),
+    // and about five times cheaper: the check was a fifth of writing a mesh
+    const std::from_chars_result fr = std::from_chars(c.data, c.data + c.n, back);
+    const bool read = fr.ec == std::errc() && fr.ptr == c.data + c.n;
+#else
+    const bool read = parseDouble(c.data, c.data + c.n, back);
+#endif
+    if (read && back == v) {
       std::memcpy(out, c.data, c.n);
       return c.n;
     }
