@@ -1540,6 +1540,9 @@ RemeshResult Pipeline::run(const MeshBuffers& input) {
     const repair::RepairStats rs = repair::relaxBelowBound(out, vertexFace, triPatch, pinned, surface, seg_.facePatch, isBad,
                                                            opt_.minAngleDeg, kRepairRounds);
     rep_.repairMoves = rs.moves;
+    if (rs.rounds >= kRepairRounds && rs.left > 0)
+      rep_.warnings.push_back("repair stopped at its cap of " + std::to_string(kRepairRounds) + " passes with " +
+                              std::to_string(rs.left) + " triangles below the bound");
   }
   rep_.seconds.lift = liftSeconds_;
   rep_.seconds.refine -= liftSeconds_ + optimizeSeconds_;

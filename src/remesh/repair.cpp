@@ -213,6 +213,7 @@ RepairStats relaxBelowBound(MeshBuffers& out, std::vector<uint32_t>& vertexFace,
       if (isBad(t)) still.push_back(t);
     bad.swap(still);
   }
+  st.left = bad.size();
   return st;
 }
 

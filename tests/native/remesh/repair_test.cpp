@@ -99,6 +99,7 @@ TEST_CASE("repair: a move never lands in a patch the star does not cover, and ne
   const auto isBadStill = [&](size_t t) { return minAngle(still, t) < 30; };
   const repair::RepairStats st = repair::relaxBelowBound(still, vertexFace, triPatch, allPinned, surface, surfacePatch, isBadStill, 30.0, 8);
   CHECK(st.moves == 0);
+  CHECK(st.left > 0);  // reported, not hidden
   CHECK(still.positions == hexFan(0.75).positions);
 }
 
@@ -124,6 +125,7 @@ TEST_CASE("repair: a neighbour that is not below the bound makes room for one th
   REQUIRE(!isBad(1));
   const repair::RepairStats st = repair::relaxBelowBound(out, vertexFace, triPatch, pinned, surface, surfacePatch, isBad, 30.0, 32);
   CHECK(st.moves >= 2);
+  CHECK(st.left == 0);
   CHECK(worst(out) >= 30);
   for (uint32_t v : {0u, 1u, 4u})
     for (int k = 0; k < 3; ++k) CHECK(out.positions[3 * v + k] == before.positions[3 * v + k]);  // pinned stay
