@@ -1,5 +1,7 @@
 #include "conformal/intrinsic_triangulation.h"
 
+#include "core/bucket_sort.h"
+
 #include <algorithm>
 #include <cmath>
 #include <string>
@@ -179,7 +181,9 @@ IntrinsicTriangulation buildIntrinsicTriangulation(const MeshBuffers& mesh) {
     const int a = T.vert[h], b = T.tip(h);
     keys[h] = {std::min(a, b), std::max(a, b), h};
   }
-  std::sort(keys.begin(), keys.end(), [](const Key& x, const Key& y) {
+  int maxLo = 0;
+  for (const Key& k : keys) maxLo = std::max(maxLo, k.lo);
+  bucketSort(keys, size_t(maxLo) + 1, [](const Key& k) { return k.lo; }, [](const Key& x, const Key& y) {
     return x.lo != y.lo ? x.lo < y.lo : (x.hi != y.hi ? x.hi < y.hi : x.h < y.h);
   });
   T.twin.assign(nH, -1);

@@ -1,5 +1,7 @@
 #include "conformal/overlay.h"
 
+#include "core/bucket_sort.h"
+
 #include <algorithm>
 #include <array>
 #include <cmath>
@@ -421,7 +423,10 @@ Pullback::Pullback(std::vector<double> inputPositions, std::vector<int> inputTri
       const uint64_t a = uint32_t(fTri_[3 * t + (k + 1) % 3]), b = uint32_t(fTri_[3 * t + (k + 2) % 3]);
       edges[3 * size_t(t) + k] = {std::min(a, b) << 32 | std::max(a, b), 3 * t + k};
     }
-  std::sort(edges.begin(), edges.end());
+  uint64_t maxLo = 0;
+  for (const auto& e : edges) maxLo = std::max(maxLo, e.first >> 32);
+  bucketSort(edges, size_t(maxLo) + 1, [](const std::pair<uint64_t, int>& e) { return size_t(e.first >> 32); },
+             [](const std::pair<uint64_t, int>& x, const std::pair<uint64_t, int>& y) { return x < y; });
   for (size_t i = 0; i < edges.size();) {
     size_t j = i;
     while (j < edges.size() && edges[j].first == edges[i].first) ++j;

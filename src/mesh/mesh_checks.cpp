@@ -5,6 +5,7 @@
 #include <cmath>
 #include <string>
 
+#include "core/bucket_sort.h"
 #include "mesh/edge_groups.h"
 #include "mesh/mesh_geometry.h"
 
@@ -102,7 +103,10 @@ Duplicates findDuplicateFaces(const std::vector<uint32_t>& tris) {
     std::sort(v.begin(), v.end());
     keys[f] = {v[0], v[1], v[2], uint32_t(f)};
   }
-  std::sort(keys.begin(), keys.end());
+  uint32_t maxLo = 0;
+  for (const auto& k : keys) maxLo = std::max(maxLo, k[0]);
+  bucketSort(keys, size_t(maxLo) + 1, [](const std::array<uint32_t, 4>& k) { return k[0]; },
+             [](const std::array<uint32_t, 4>& x, const std::array<uint32_t, 4>& y) { return x < y; });
   Duplicates d;
   d.isDuplicate.assign(nf, 0);
   for (size_t i = 1; i < nf; ++i) {
