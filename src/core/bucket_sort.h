@@ -12,11 +12,14 @@ namespace conformesh {
 //! key of `less` (less(x, y) whenever bucket(x) < bucket(y)): a counting sort by bucket, then
 //! std::sort inside each bucket (a vertex's few edges or faces). `less` must be a strict total
 //! order on the items (ties broken, e.g. by an index), so the result does not depend on the method.
-//! Keys sparser than the items (more than 4 buckets per item) fall back to std::sort.
+//! Keys sparser than the items (more than 4 buckets per item), or any key outside [0, buckets),
+//! fall back to std::sort.
 template <class T, class Bucket, class Less>
 void bucketSort(std::vector<T>& v, size_t buckets, Bucket bucket, Less less) {
   if (v.size() < 2) return;
-  if (buckets > 4 * v.size() + 1024) {  // sparse keys (huge or unchecked indices): no table
+  bool inRange = buckets <= 4 * v.size() + 1024;  // sparse keys (huge indices): no table
+  for (size_t i = 0; i < v.size() && inRange; ++i) inRange = size_t(bucket(v[i])) < buckets;
+  if (!inRange) {  // or a key outside [0, buckets) (a caller's bad input): the plain sort
     std::sort(v.begin(), v.end(), less);
     return;
   }

@@ -26,6 +26,10 @@ TEST_CASE("bucketSort gives std::sort's order, dense and sparse keys") {
     CAPTURE(keys);
     CHECK(v == ref);
   }
+  // a key outside the announced range: the plain sort, not a write out of bounds
+  std::vector<Item> bad = {{9, 0, 0}, {2, 0, 1}, {5, 0, 2}};
+  bucketSort(bad, 4, [](const Item& x) { return x[0]; }, less);
+  CHECK(bad == std::vector<Item>{{2, 0, 1}, {5, 0, 2}, {9, 0, 0}});
   std::vector<Item> one = {{3, 0, 0}};
   bucketSort(one, 4, [](const Item& x) { return x[0]; }, less);
   CHECK(one.size() == 1);
