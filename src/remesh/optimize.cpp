@@ -8,6 +8,7 @@
 #include "planar/predicates.h"
 #include "quality/aabb_tree.h"
 #include "core/detmath.h"
+#include "core/vertex_stars.h"
 
 namespace conformesh::optimization {
 namespace {
@@ -90,16 +91,7 @@ struct Mesh {
     minAngle.resize(tri.size() / 3);
     for (size_t t = 0; t < minAngle.size(); ++t) minAngle[t] = triMin(uint32_t(t));
   }
-  void buildStars() {
-    const size_t nv = xy.size() / 2, nt = tri.size() / 3;
-    starStart.assign(nv + 1, 0);
-    for (uint32_t v : tri) ++starStart[v + 1];
-    for (size_t i = 0; i < nv; ++i) starStart[i + 1] += starStart[i];
-    starTri.assign(tri.size(), 0);
-    std::vector<uint32_t> fill(starStart.begin(), starStart.end() - 1);
-    for (size_t t = 0; t < nt; ++t)
-      for (int c = 0; c < 3; ++c) starTri[fill[tri[3 * t + c]]++] = uint32_t(t);
-  }
+  void buildStars() { vertexStars(tri, xy.size() / 2, starStart, starTri); }
 };
 
 

@@ -25,6 +25,7 @@
 #include "remesh/repair.h"
 #include "remesh/limits.h"
 #include "core/detmath.h"
+#include "core/vertex_stars.h"
 
 namespace conformesh {
 namespace {
@@ -868,13 +869,7 @@ std::vector<std::vector<uint8_t>> Pipeline::slideSamples() {
     const PatchWork& w = *work_[p];
     Star& st = stars[p];
     const size_t nv = w.localToGlobal.size(), nt = w.triangles.size() / 3;
-    st.start.assign(nv + 1, 0);
-    for (uint32_t v : w.triangles) ++st.start[v + 1];
-    for (size_t i = 0; i < nv; ++i) st.start[i + 1] += st.start[i];
-    st.tri.assign(w.triangles.size(), 0);
-    std::vector<uint32_t> fill(st.start.begin(), st.start.end() - 1);
-    for (size_t t = 0; t < nt; ++t)
-      for (int c = 0; c < 3; ++c) st.tri[fill[w.triangles[3 * t + c]]++] = uint32_t(t);
+    vertexStars(w.triangles, nv, st.start, st.tri);
     // the patch's latest optimization left these very values (minAngleDeg3 of the same
     // positions: only optimizations and slides move vertices, and each keeps them current)
     if (work_[p]->optimizeCache.minAngle.size() == nt) {

@@ -5,6 +5,7 @@
 #include <utility>
 
 #include "core/detmath.h"
+#include "core/vertex_stars.h"
 #include "quality/aabb_tree.h"
 #include "quality/metrics.h"
 #include "remesh/optimize.h"
@@ -43,14 +44,7 @@ class Repairer {
            double boundDeg)
       : bound_(boundDeg), out_(out), vertexFace_(vertexFace), triPatch_(triPatch), pinned_(pinned), surface_(surface),
         surfacePatch_(surfacePatch), dist_(surface) {
-    const size_t nv = out.vertexCount();
-    start_.assign(nv + 1, 0);
-    for (uint32_t v : out.triangles) ++start_[v + 1];
-    for (size_t i = 0; i < nv; ++i) start_[i + 1] += start_[i];
-    star_.resize(out.triangles.size());
-    std::vector<uint32_t> fill(start_.begin(), start_.end() - 1);
-    for (size_t t = 0; t < out.triangleCount(); ++t)
-      for (int c = 0; c < 3; ++c) star_[fill[out.triangles[3 * t + c]]++] = uint32_t(t);
+    vertexStars(out.triangles, out.vertexCount(), start_, star_);
   }
 
   //! Move v to a better place on the surface; true when it moved. Strict: the star's smallest
