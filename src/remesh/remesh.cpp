@@ -212,6 +212,7 @@ class Pipeline {
   const ProgressFn& progress_;
   Preconditioned pre_;  // the input after mesh/precondition.h (the first vertices are the input's)
   F::EdgeGraph g_;
+  const MeshBuffers* graphMesh_ = nullptr;  // the mesh g_ was built from (same vertex and face indices)
   F::Segmentation seg_;
   F::SizingField sizing_;
   F::CurveMesh cm_;
@@ -1298,6 +1299,7 @@ RemeshResult Pipeline::run(const MeshBuffers& input) {
      // features): a first segmentation of the input finds them
     PreconditionOptions po;
     g_ = F::buildEdgeGraph(in);
+    graphMesh_ = &in;
     F::FeatureOptions f0 = fo;
     f0.featureEdges = userFeatures;
     seg_ = F::segment(g_, f0, progress_);
@@ -1317,6 +1319,7 @@ RemeshResult Pipeline::run(const MeshBuffers& input) {
     if (pre_.splits > 0 || pre_.flips > 0) {
       fo.featureEdges = pre_.protectedEdges;
       g_ = F::buildEdgeGraph(pre_.mesh);
+      graphMesh_ = &pre_.mesh;
       seg_ = F::segment(g_, fo, progress_);
     }
   }
@@ -1524,15 +1527,10 @@ RemeshResult Pipeline::run(const MeshBuffers& input) {
     for (uint32_t s : cm_.cornerSample)
       if (s < pinned.size()) pinned[s] = 1;
     for (size_t v = 0; v < pinned.size(); ++v) pinned[v] |= exemptVertex[v];
-    MeshBuffers surface;
-    surface.positions.reserve(3 * g_.positions.size());
-    for (const F::Vec3& p : g_.positions) surface.positions.insert(surface.positions.end(), {p.x, p.y, p.z});
-    surface.triangles.reserve(3 * g_.faces.size());
-    for (const auto& f : g_.faces) surface.triangles.insert(surface.triangles.end(), f.begin(), f.end());
     const auto isBad = [&](size_t t) {
       return minAngleBelow(out, t, opt_.minAngleDeg, cosBound) && exemptCornerOf(out, t, exemptVertex) == kNone;
     };
-    const repair::RepairStats rs = repair::relaxBelowBound(out, vertexFace, triPatch, pinned, surface, seg_.facePatch, isBad,
+    const repair::RepairStats rs = repair::relaxBelowBound(out, vertexFace, triPatch, pinned, *graphMesh_, seg_.facePatch, isBad,
                                                            opt_.minAngleDeg, kRepairRounds);
     rep_.repairMoves = rs.moves;
     if (rs.rounds >= kRepairRounds && rs.left > 0)
