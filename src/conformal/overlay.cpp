@@ -485,15 +485,34 @@ int Pullback::walk(double x, double y, int hintFace, double B[3], int& steps) co
   if (hintFace < 0 || hintFace >= nF) return -1;
   int t = hintFace;
   for (int step = 0; step < kMaxSteps; ++step) {
-    double m;
-    if (!faceCoords(t, x, y, B, m)) return -1;
-    if (m >= kSurelyInside) {
-      steps = step;
-      return t;
+    // Most steps only ask which edge the point is beyond: the signs of the barycentric
+    // coordinates times the face's doubled area (no division or square root); where the point
+    // is inside, the coordinates and score are faceCoords' (the grid search's) exactly.
+    const double* a = &xy_[2 * fTri_[3 * t]];
+    const double* b = &xy_[2 * fTri_[3 * t + 1]];
+    const double* d = &xy_[2 * fTri_[3 * t + 2]];
+    const double area = (b[0] - a[0]) * (d[1] - a[1]) - (b[1] - a[1]) * (d[0] - a[0]);
+    if (!(area > 0)) return -1;
+    const double w[3] = {(b[0] - x) * (d[1] - y) - (b[1] - y) * (d[0] - x), (d[0] - x) * (a[1] - y) - (d[1] - y) * (a[0] - x),
+                         (a[0] - x) * (b[1] - y) - (a[1] - y) * (b[0] - x)};
+    int k;
+    if (w[0] > 0 && w[1] > 0 && w[2] > 0) {
+      // faceCoords' coordinates and score, from the same products
+      B[0] = w[0] / area;
+      B[1] = w[1] / area;
+      B[2] = 1 - B[0] - B[1];
+      const double m = std::min(B[0], std::min(B[1], B[2])) * std::sqrt(area) / diam_;
+      if (m >= kSurelyInside) {
+        steps = step;
+        return t;
+      }
+      k = B[0] <= B[1] && B[0] <= B[2] ? 0 : (B[1] <= B[2] ? 1 : 2);
+      if (!(B[k] < 0)) return -1;  // inside, but too near an edge to be sure
+    } else {
+      // cross the edge opposite the most negative coordinate (the point is beyond its line)
+      k = w[0] <= w[1] && w[0] <= w[2] ? 0 : (w[1] <= w[2] ? 1 : 2);
+      if (!(w[k] < 0)) return -1;  // on an edge (or NaN): the grid search decides
     }
-    // cross the edge opposite the most negative coordinate (the point is beyond its line)
-    const int k = B[0] <= B[1] && B[0] <= B[2] ? 0 : (B[1] <= B[2] ? 1 : 2);
-    if (!(B[k] < 0)) return -1;  // inside, but too near an edge to be sure
     t = fNbr_[3 * size_t(t) + k];
     if (t < 0) return -1;  // off the domain across this edge, or a hole: the grid search decides
   }
