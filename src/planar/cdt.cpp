@@ -6,29 +6,13 @@
 #include <cmath>
 #include <string>
 
+#include "core/hilbert.h"
 #include "planar/cdt_state.h"
 
 namespace conformesh::planar {
 namespace {
 
 [[noreturn]] void pslgError(const std::string& msg) { fail(Code::InvalidPslg, Stage::Refine, msg); }
-
-// Index along a 2^16 x 2^16 Hilbert curve (classic rotate-and-flip formulation).
-uint64_t hilbertKey(uint32_t x, uint32_t y) {
-  uint64_t d = 0;
-  for (uint32_t s = 1u << 15; s > 0; s >>= 1) {
-    uint32_t rx = (x & s) ? 1 : 0, ry = (y & s) ? 1 : 0;
-    d += uint64_t(s) * s * ((3 * rx) ^ ry);
-    if (ry == 0) {
-      if (rx == 1) {
-        x = 0xFFFFu - x;
-        y = 0xFFFFu - y;
-      }
-      std::swap(x, y);
-    }
-  }
-  return d;
-}
 
 class CdtBuilder {
  public:

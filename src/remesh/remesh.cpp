@@ -25,6 +25,7 @@
 #include "remesh/repair.h"
 #include "remesh/limits.h"
 #include "core/detmath.h"
+#include "core/hilbert.h"
 #include "core/vertex_stars.h"
 
 namespace conformesh {
@@ -108,6 +109,54 @@ void dropUnusedPoints(planar::PlanarMesh& m, size_t keep) {
   m.vertexParam.resize(next);
   for (uint32_t& v : m.triangles) v = id[v];
   for (uint32_t& v : m.edges) v = id[v];
+}
+
+// Renumber the vertices from index `keep` on along a Hilbert curve over their planar positions,
+// and order the triangles by their smallest vertex (then the others): the refinement leaves them
+// in the order its queue inserted them, all over the patch, while the lift, the optimization and
+// the certificate visit vertices by index and a vertex's star by its triangles. Neighbours in
+// memory are then neighbours in the plane (the optimization's stars, lifts and guard).
+void spatialOrder(planar::PlanarMesh& m, size_t keep) {
+  const size_t nv = m.vertexCount();
+  if (nv <= keep + 1) return;
+  double lo[2] = {INFINITY, INFINITY}, hi[2] = {-INFINITY, -INFINITY};
+  for (size_t v = keep; v < nv; ++v)
+    for (int d = 0; d < 2; ++d) lo[d] = std::min(lo[d], m.points[2 * v + d]), hi[d] = std::max(hi[d], m.points[2 * v + d]);
+  const double sc = 65535.0 / std::max(std::max(hi[0] - lo[0], hi[1] - lo[1]), 1e-300);
+  std::vector<std::pair<uint64_t, uint32_t>> keyed;
+  keyed.reserve(nv - keep);
+  for (size_t v = keep; v < nv; ++v) {
+    const uint32_t qx = uint32_t(std::clamp((m.points[2 * v] - lo[0]) * sc, 0.0, 65535.0));
+    const uint32_t qy = uint32_t(std::clamp((m.points[2 * v + 1] - lo[1]) * sc, 0.0, 65535.0));
+    keyed.emplace_back(hilbertKey(qx, qy), uint32_t(v));
+  }
+  std::sort(keyed.begin(), keyed.end());
+  std::vector<uint32_t> id(nv);
+  for (size_t v = 0; v < keep; ++v) id[v] = uint32_t(v);
+  for (size_t i = 0; i < keyed.size(); ++i) id[keyed[i].second] = uint32_t(keep + i);
+  const std::vector<double> points = m.points;
+  const std::vector<int32_t> segment = m.vertexSegment;
+  const std::vector<double> param = m.vertexParam;
+  for (size_t v = keep; v < nv; ++v) {
+    const uint32_t u = id[v];
+    m.points[2 * size_t(u)] = points[2 * v];
+    m.points[2 * size_t(u) + 1] = points[2 * v + 1];
+    m.vertexSegment[u] = segment[v];
+    m.vertexParam[u] = param[v];
+  }
+  for (uint32_t& v : m.triangles) v = id[v];
+  for (uint32_t& v : m.edges) v = id[v];
+  // triangles: rotated to start at their smallest vertex (orientation kept), then sorted
+  const size_t nt = m.triangleCount();
+  std::vector<std::array<uint32_t, 3>> tris(nt);
+  for (size_t t = 0; t < nt; ++t) {
+    const uint32_t* x = &m.triangles[3 * t];
+    const int r = x[0] <= x[1] && x[0] <= x[2] ? 0 : (x[1] <= x[2] ? 1 : 2);
+    tris[t] = {x[r], x[(r + 1) % 3], x[(r + 2) % 3]};
+  }
+  std::sort(tris.begin(), tris.end());
+  for (size_t t = 0; t < nt; ++t)
+    for (int k = 0; k < 3; ++k) m.triangles[3 * t + k] = tris[t][k];
 }
 
 // Largest distance of a patch's input vertices from the plane through their centroid normal to
@@ -742,6 +791,7 @@ void Pipeline::meshPatch(uint32_t p, bool splitSegments) {
   }
   if (!rr.status.ok()) fail(rr.status.code, Stage::Refine, "patch " + std::to_string(p) + ": " + rr.status.message);
   dropUnusedPoints(rr.mesh, bp.size());
+  spatialOrder(rr.mesh, bp.size());
   const auto& pmsh = rr.mesh;
   auto tl = std::chrono::steady_clock::now();
   const size_t nv = pmsh.vertexCount();
