@@ -98,6 +98,7 @@ struct Mesh {
   const SurfaceSamples* guard = nullptr;
   std::vector<uint32_t> head, next;
   std::vector<double> err;
+  std::vector<uint32_t> pending;  // rebucket's scratch list (kept to spare an allocation per move)
 
   const double* p(uint32_t v) const { return &xy[2 * size_t(v)]; }
   double triMin(uint32_t t) const {
@@ -208,7 +209,8 @@ bool guardAccepts(const Mesh& m, const uint32_t* ts, size_t n, double moved = IN
 // After a kept change: the guard points of ts[0..n) go to their new triangles.
 void rebucket(Mesh& m, const uint32_t* ts, size_t n) {
   if (!m.guard) return;
-  std::vector<uint32_t> pts;
+  std::vector<uint32_t>& pts = m.pending;
+  pts.clear();
   for (size_t i = 0; i < n; ++i) {
     for (uint32_t k = m.head[ts[i]]; k != kNoTri; k = m.next[k]) pts.push_back(k);
     m.head[ts[i]] = kNoTri;
@@ -374,23 +376,32 @@ bool guardAcceptsFlip(Mesh& m, uint32_t t0, uint32_t t1, uint32_t c0, uint32_t x
 }
 
 // Triangle adjacency: adj[3t + c] is the triangle across t's edge (v[c], v[c+1]), kNoTri on the
-// boundary. Built from the stars once per patch; flipPass keeps it current.
+// boundary. Built from the stars once per patch (each edge at the vertex it leaves: the triangle
+// of the star that enters that vertex from the edge's other end); flipPass keeps it current.
+// Pre: the triangles are consistently oriented (a refinement's are).
 void buildAdjacency(Mesh& m) {
-  const size_t nt = m.tri.size() / 3;
+  const size_t nt = m.tri.size() / 3, nv = m.starStart.size() - 1;
   m.adj.assign(3 * nt, kNoTri);
-  for (size_t t = 0; t < nt; ++t)
-    for (int c = 0; c < 3; ++c) {
-      const uint32_t a = m.tri[3 * t + c], b = m.tri[3 * t + (c + 1) % 3];
-      for (uint32_t i = m.starStart[a]; i < m.starStart[a + 1]; ++i) {
-        const uint32_t u = m.starTri[i];
-        if (u == t) continue;
-        const uint32_t* w = &m.tri[3 * size_t(u)];
-        if (w[0] == b || w[1] == b || w[2] == b) {
-          m.adj[3 * t + c] = u;
+  struct Corner3 {
+    uint32_t t, next, prev;
+    int k;
+  };
+  std::vector<Corner3> star;
+  for (uint32_t a = 0; a < nv; ++a) {
+    star.clear();
+    for (uint32_t i = m.starStart[a]; i < m.starStart[a + 1]; ++i) {
+      const uint32_t t = m.starTri[i];
+      const uint32_t* w = &m.tri[3 * size_t(t)];
+      const int k = w[0] == a ? 0 : (w[1] == a ? 1 : 2);
+      star.push_back({t, w[(k + 1) % 3], w[(k + 2) % 3], k});
+    }
+    for (const Corner3& c : star)
+      for (const Corner3& d : star)
+        if (d.prev == c.next && d.t != c.t) {
+          m.adj[3 * size_t(c.t) + c.k] = d.t;
           break;
         }
-      }
-    }
+  }
 }
 
 // In triangle t, the adjacency slot that names `from` now names `to` (no-op for kNoTri).
@@ -483,7 +494,7 @@ double minAngleDeg3Approx(const Vec3& a, const Vec3& b, const Vec3& c) { return 
 OptimizeStats optimizePatch(std::vector<double>& xy, std::vector<uint32_t>& triangles, std::vector<Vec3>& pos,
                             const std::vector<uint8_t>& fixed, const LiftFn& lift, const OptimizeOptions& o,
                             const std::vector<uint8_t>& active0, const SurfaceSamples& guard, OptimizeCache* cache) {
-  Mesh m{xy, triangles, pos, fixed, {}, {}, {}, {}, nullptr, {}, {}, {}};
+  Mesh m{xy, triangles, pos, fixed, {}, {}, {}, {}, nullptr, {}, {}, {}, {}};
   OptimizeStats st;
   const size_t nt = triangles.size() / 3;
   // the previous call's min angles stand where no vertex moved since (the same positions give
