@@ -1,8 +1,12 @@
 // conformesh — positions along a Hilbert curve, for spatially coherent orders.
 #pragma once
 
+#include <algorithm>
+#include <cmath>
+#include <cstddef>
 #include <cstdint>
 #include <utility>
+#include <vector>
 
 namespace conformesh {
 
@@ -22,6 +26,30 @@ inline uint64_t hilbertKey(uint32_t x, uint32_t y) {
     }
   }
   return d;
+}
+
+//! The points xy[2i], xy[2i + 1] for i in `ids`, ordered along a Hilbert curve over their bounding
+//! square (2^16 cells a side; ties by index): points near each other in the list are near each
+//! other in the plane. The coordinates must be finite.
+inline std::vector<uint32_t> hilbertOrder(const double* xy, const std::vector<uint32_t>& ids) {
+  double x0 = INFINITY, y0 = INFINITY, x1 = -INFINITY, y1 = -INFINITY;
+  for (uint32_t i : ids) {
+    x0 = std::min(x0, xy[2 * size_t(i)]), x1 = std::max(x1, xy[2 * size_t(i)]);
+    y0 = std::min(y0, xy[2 * size_t(i) + 1]), y1 = std::max(y1, xy[2 * size_t(i) + 1]);
+  }
+  const double sc = 65535.0 / std::max(std::max(x1 - x0, y1 - y0), 1e-300);
+  std::vector<std::pair<uint64_t, uint32_t>> keyed;
+  keyed.reserve(ids.size());
+  for (uint32_t i : ids) {
+    const uint32_t qx = uint32_t(std::min(65535.0, (xy[2 * size_t(i)] - x0) * sc));
+    const uint32_t qy = uint32_t(std::min(65535.0, (xy[2 * size_t(i) + 1] - y0) * sc));
+    keyed.emplace_back(hilbertKey(qx, qy), i);
+  }
+  std::sort(keyed.begin(), keyed.end());
+  std::vector<uint32_t> order;
+  order.reserve(keyed.size());
+  for (const auto& k : keyed) order.push_back(k.second);
+  return order;
 }
 
 }  // namespace conformesh

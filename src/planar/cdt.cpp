@@ -100,27 +100,7 @@ class CdtBuilder {
 
   void triangulatePoints() {
     if (distinct_.size() < 3) pslgError("fewer than 3 distinct points");
-    double x0 = INFINITY, y0 = INFINITY, x1 = -INFINITY, y1 = -INFINITY;
-    for (uint32_t i : distinct_) {
-      const double* p = T_.pt(i);
-      x0 = std::min(x0, p[0]);
-      x1 = std::max(x1, p[0]);
-      y0 = std::min(y0, p[1]);
-      y1 = std::max(y1, p[1]);
-    }
-    double sc = 65535.0 / std::max(std::max(x1 - x0, y1 - y0), 1e-300);
-    std::vector<std::pair<uint64_t, uint32_t>> keyed;
-    keyed.reserve(distinct_.size());
-    for (uint32_t i : distinct_) {
-      const double* p = T_.pt(i);
-      uint32_t qx = uint32_t(std::min(65535.0, (p[0] - x0) * sc));
-      uint32_t qy = uint32_t(std::min(65535.0, (p[1] - y0) * sc));
-      keyed.emplace_back(hilbertKey(qx, qy), i);
-    }
-    std::sort(keyed.begin(), keyed.end());
-    std::vector<uint32_t> order;
-    order.reserve(keyed.size());
-    for (auto& k : keyed) order.push_back(k.second);
+    const std::vector<uint32_t> order = hilbertOrder(T_.pt(0), distinct_);
     T_.buildDelaunay(order);
   }
 

@@ -119,21 +119,12 @@ void dropUnusedPoints(planar::PlanarMesh& m, size_t keep) {
 void spatialOrder(planar::PlanarMesh& m, size_t keep) {
   const size_t nv = m.vertexCount();
   if (nv <= keep + 1) return;
-  double lo[2] = {INFINITY, INFINITY}, hi[2] = {-INFINITY, -INFINITY};
-  for (size_t v = keep; v < nv; ++v)
-    for (int d = 0; d < 2; ++d) lo[d] = std::min(lo[d], m.points[2 * v + d]), hi[d] = std::max(hi[d], m.points[2 * v + d]);
-  const double sc = 65535.0 / std::max(std::max(hi[0] - lo[0], hi[1] - lo[1]), 1e-300);
-  std::vector<std::pair<uint64_t, uint32_t>> keyed;
-  keyed.reserve(nv - keep);
-  for (size_t v = keep; v < nv; ++v) {
-    const uint32_t qx = uint32_t(std::clamp((m.points[2 * v] - lo[0]) * sc, 0.0, 65535.0));
-    const uint32_t qy = uint32_t(std::clamp((m.points[2 * v + 1] - lo[1]) * sc, 0.0, 65535.0));
-    keyed.emplace_back(hilbertKey(qx, qy), uint32_t(v));
-  }
-  std::sort(keyed.begin(), keyed.end());
+  std::vector<uint32_t> refined(nv - keep);
+  std::iota(refined.begin(), refined.end(), uint32_t(keep));
+  const std::vector<uint32_t> order = hilbertOrder(m.points.data(), refined);
   std::vector<uint32_t> id(nv);
   for (size_t v = 0; v < keep; ++v) id[v] = uint32_t(v);
-  for (size_t i = 0; i < keyed.size(); ++i) id[keyed[i].second] = uint32_t(keep + i);
+  for (size_t i = 0; i < order.size(); ++i) id[order[i]] = uint32_t(keep + i);
   const std::vector<double> points = m.points;
   const std::vector<int32_t> segment = m.vertexSegment;
   const std::vector<double> param = m.vertexParam;
