@@ -15,6 +15,27 @@ double boundingBoxDiagonal(const EdgeGraph& g) {
   return g.positions.empty() ? 0.0 : norm(hi - lo);
 }
 
+std::vector<double> surfaceCurvature(const EdgeGraph& g) {
+  std::vector<Vec3> vn(g.vertexCount);  // area-weighted vertex normals
+  for (uint32_t f = 0; f < g.faceCount; ++f) {
+    const auto& t = g.faces[f];
+    Vec3 n = cross(g.positions[t[1]] - g.positions[t[0]], g.positions[t[2]] - g.positions[t[0]]);
+    for (uint32_t v : t) vn[v] = vn[v] + n;
+  }
+  std::vector<double> kappa(g.vertexCount, 0.0);
+  for (uint32_t v = 0; v < g.vertexCount; ++v) {
+    const double ln = norm(vn[v]);
+    if (ln == 0) continue;
+    const Vec3 n = vn[v] * (1.0 / ln);
+    for (uint32_t k = g.vertexEdgeStart[v]; k < g.vertexEdgeStart[v + 1]; ++k) {
+      const Vec3 d = g.positions[g.otherVertex(g.vertexEdgeIds[k], v)] - g.positions[v];
+      const double dd = dot(d, d);
+      if (dd > 0) kappa[v] = std::max(kappa[v], 2.0 * std::abs(dot(n, d)) / dd);
+    }
+  }
+  return kappa;
+}
+
 SizingField computeSizing(const EdgeGraph& g, const Segmentation& seg, const SizingOptions& o) {
   SizingField s;
   s.diagonal = boundingBoxDiagonal(g);
@@ -36,30 +57,40 @@ SizingField computeSizing(const EdgeGraph& g, const Segmentation& seg, const Siz
 
   s.h.assign(g.vertexCount, s.target);
   if (tol > 0) {
-    // vertex normals (area weighted) for vertices off the curves
-    std::vector<Vec3> vn(g.vertexCount);
-    for (uint32_t f = 0; f < g.faceCount; ++f) {
-      const auto& t = g.faces[f];
-      Vec3 n = cross(g.positions[t[1]] - g.positions[t[0]], g.positions[t[2]] - g.positions[t[0]]);
-      for (uint32_t v : t) vn[v] = vn[v] + n;
-    }
+    std::vector<double> kappaSurface = o.surfaceKappa.size() == g.vertexCount ? o.surfaceKappa : surfaceCurvature(g);
+    // from v along curve edge e to the first vertex that is no split point (see
+    // firstSplitVertex); a split point on a curve has exactly two curve edges
+    auto alongCurve = [&](uint32_t v, uint32_t e) {
+      uint32_t w = g.otherVertex(e, v);
+      for (int step = 0; step < 1 << 20 && w >= o.firstSplitVertex; ++step) {  // hard cap
+        uint32_t next = kNone;
+        int n = 0;
+        for (uint32_t k = g.vertexEdgeStart[w]; k < g.vertexEdgeStart[w + 1]; ++k)
+          if (const uint32_t f = g.vertexEdgeIds[k]; seg.isCurveEdge(f) && ++n && f != e) next = f;
+        if (n != 2 || next == kNone) break;
+        e = next;
+        w = g.otherVertex(e, w);
+      }
+      return w;
+    };
     for (uint32_t v = 0; v < g.vertexCount; ++v) {
       double kappa = 0;
       uint32_t curveEdges[2], nc = 0;
+      bool onlyCuts = true;  // every curve edge at v is a cut: the surface is smooth across them
       for (uint32_t k = g.vertexEdgeStart[v]; k < g.vertexEdgeStart[v + 1]; ++k)
-        if (seg.isCurveEdge(g.vertexEdgeIds[k]) && nc++ < 2) curveEdges[nc - 1] = g.vertexEdgeIds[k];
-      if (nc == 0) {
-        double ln = norm(vn[v]);
-        if (ln == 0) continue;
-        Vec3 n = vn[v] * (1.0 / ln);
-        for (uint32_t k = g.vertexEdgeStart[v]; k < g.vertexEdgeStart[v + 1]; ++k) {
-          Vec3 d = g.positions[g.otherVertex(g.vertexEdgeIds[k], v)] - g.positions[v];
-          double dd = dot(d, d);
-          if (dd > 0) kappa = std::max(kappa, 2.0 * std::abs(dot(n, d)) / dd);
+        if (const uint32_t e = g.vertexEdgeIds[k]; seg.isCurveEdge(e)) {
+          onlyCuts = onlyCuts && seg.edgeKind[e] == EdgeKind::Cut;
+          if (nc++ < 2) curveEdges[nc - 1] = e;
         }
+      // Off the curves and on cuts: the surface's curvature. A cut is no crease, and its
+      // polyline's turns (it follows input edges) say nothing about the surface: before session
+      // 7 its vertices took the turn angle instead. On feature and boundary curves: the curve's
+      // curvature (the output follows the curve).
+      if (nc == 0 || onlyCuts) {
+        kappa = kappaSurface[v];
       } else if (nc == 2 && !seg.vertexCorner[v]) {
-        Vec3 a = g.positions[v] - g.positions[g.otherVertex(curveEdges[0], v)];
-        Vec3 b = g.positions[g.otherVertex(curveEdges[1], v)] - g.positions[v];
+        Vec3 a = g.positions[v] - g.positions[alongCurve(v, curveEdges[0])];
+        Vec3 b = g.positions[alongCurve(v, curveEdges[1])] - g.positions[v];
         double len = 0.5 * (norm(a) + norm(b));
         if (len > 0) kappa = angleBetween(a, b) / len;
       }

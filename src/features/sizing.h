@@ -1,6 +1,7 @@
 // conformesh — the 3D sizing field: target edge length per input vertex.
 #pragma once
 
+#include <cstdint>
 #include <vector>
 
 #include "features/edge_graph.h"
@@ -27,6 +28,13 @@ struct SizingOptions {
   double maxEdgeLength = -1;
   //! Optional per-input-vertex target lengths (absolute); empty, or one per input vertex.
   std::vector<double> vertexSizing;
+  //! Optional surface curvature per vertex (surfaceCurvature of the mesh the graph was made
+  //! from by splits and flips, carried to the new vertices); empty: surfaceCurvature(g).
+  std::vector<double> surfaceKappa;
+  //! Vertices from this index on are points that halve an edge of the mesh the graph was made
+  //! from: a curve's turn at a vertex is measured to the nearest vertices along it below this
+  //! index (the edges as given), so splits do not change it.
+  uint32_t firstSplitVertex = UINT32_MAX;
 };
 
 struct SizingField {
@@ -35,6 +43,11 @@ struct SizingField {
   double diagonal = 0;    //!< bbox diagonal
   double minLength = 0, maxLength = 0;
 };
+
+//! Per vertex, the largest normal curvature 2|n·d|/|d|² over its edges d (n: the area-weighted
+//! vertex normal; 0 where it vanishes). It grows without bound along short edges where n tilts off
+//! a flat face, so it is measured on the input as given, not on a copy with split edges.
+std::vector<double> surfaceCurvature(const EdgeGraph& g);
 
 //! Bounding-box diagonal of the mesh.
 double boundingBoxDiagonal(const EdgeGraph& g);

@@ -79,6 +79,10 @@ constexpr double kSameSampleFactor = 1e-9;
 constexpr double kMinFeatureFactor = 2.0;
 // Times a patch's boundary chords may be split where they cross before refinement gives up.
 constexpr int kCrossingRepairs = 8;
+// The last repair may move a star this fraction of the chord tolerance from the input (besides
+// as far as it was; remesh/repair.h): 1e-5 of the diagonal by default, far below the output's
+// distance to the input (~1e-3).
+constexpr double kRepairDeviationFloor = 0.01;
 // Input edges longer than this times the target edge length are split before segmentation, so
 // cuts along input edges are not sawtooths of needle edges (mesh/precondition.h).
 constexpr double kPreconditionEdgeFactor = 2.0;
@@ -251,6 +255,7 @@ class Pipeline {
   const RemeshOptions& opt_;
   const ProgressFn& progress_;
   Preconditioned pre_;  // the input after mesh/precondition.h (the first vertices are the input's)
+  std::vector<double> surfaceKappa_;  // features::surfaceCurvature of the input, per vertex of pre_.mesh (empty: not preconditioned)
   F::EdgeGraph g_;
   const MeshBuffers* graphMesh_ = nullptr;  // the mesh g_ was built from (same vertex and face indices)
   F::Segmentation seg_;
@@ -1358,6 +1363,13 @@ RemeshResult Pipeline::run(const MeshBuffers& input) {
     pre_ = precondition(in, userFeatures, po);
     // no patch needs cuts, so nothing was changed: the segmentation of the input stands
     if (pre_.splits > 0 || pre_.flips > 0) {
+      // the surface's curvature from the input as given (features/sizing.h), carried to the
+      // split points (each the larger of its edge's two ends): the precondition's splits
+      // depend on the target, and short split edges would change the estimate
+      surfaceKappa_ = F::surfaceCurvature(g_);
+      surfaceKappa_.resize(pre_.mesh.vertexCount(), 0.0);
+      for (size_t v = in.vertexCount(); v < surfaceKappa_.size(); ++v)
+        surfaceKappa_[v] = std::max(surfaceKappa_[pre_.parents[v][0]], surfaceKappa_[pre_.parents[v][1]]);
       fo.featureEdges = pre_.protectedEdges;
       g_ = F::buildEdgeGraph(pre_.mesh);
       graphMesh_ = &pre_.mesh;
@@ -1372,6 +1384,8 @@ RemeshResult Pipeline::run(const MeshBuffers& input) {
   so.gradation = opt_.gradation;
   so.minEdgeLength = opt_.minEdgeLength;
   so.maxEdgeLength = opt_.maxEdgeLength;
+  so.surfaceKappa = std::move(surfaceKappa_);
+  if (pre_.splits > 0) so.firstSplitVertex = uint32_t(in.vertexCount());
   if (!opt_.vertexSizing.empty()) {
     if (opt_.vertexSizing.size() != input.vertexCount())
       fail(Code::InvalidArgument, Stage::CurveMesh, "vertexSizing needs one value per input vertex");
@@ -1571,8 +1585,10 @@ RemeshResult Pipeline::run(const MeshBuffers& input) {
     const auto isBad = [&](size_t t) {
       return minAngleBelow(out, t, opt_.minAngleDeg, cosBound) && exemptCornerOf(out, t, exemptVertex) == kNone;
     };
+    // a repaired star may always be 1 % of the chord tolerance from the input
+    const double chordTol = opt_.chordTolerance >= 0 ? opt_.chordTolerance : opt_.chordToleranceRel * sizing_.diagonal;
     const repair::RepairStats rs = repair::relaxBelowBound(out, vertexFace, triPatch, pinned, *graphMesh_, seg_.facePatch, isBad,
-                                                           opt_.minAngleDeg, kRepairRounds);
+                                                           opt_.minAngleDeg, kRepairRounds, kRepairDeviationFloor * chordTol);
     rep_.repairMoves = rs.moves;
     if (rs.rounds >= kRepairRounds && rs.left > 0)
       rep_.warnings.push_back("repair stopped at its cap of " + std::to_string(kRepairRounds) + " passes with " +

@@ -14,7 +14,9 @@
 // When no vertex of those triangles can move any more, their free neighbours make room: a
 // neighbour moves where the squared deficit of its star's angles below 40° falls, its star's
 // smallest angle staying at or above the bound (a cut vertex boxed in between a feature and a
-// neighbour whose own triangles are fine; camelhead).
+// neighbour whose own triangles are fine; camelhead). When they cannot either, a vertex of such a
+// triangle may raise its star's smallest angle at the price of one more star triangle below the
+// bound; a repair that ends with more triangles below the bound than it began with is undone.
 // A moved vertex keeps its planar coordinates in RemeshResult::patches (they are for display
 // and UVs): there it sits where the refinement put it, a short step from its surface position.
 #pragma once
@@ -39,9 +41,11 @@ struct RepairStats {
 //! `surfacePatch` the patch of each of its faces; `isBad(t)`: output triangle t is below the bound
 //! and not exempt. A move must raise the star's smallest angle and must not add a star triangle
 //! below `boundDeg`. At most `maxRounds` passes (a hard cap); a pass that moves nothing ends it.
+//! `deviationFloor`: a star may always get this far from the input (absolute; a small fraction
+//! of the chord tolerance), besides as far as it was or 5 % of its shortest edge.
 RepairStats relaxBelowBound(MeshBuffers& out, std::vector<uint32_t>& vertexFace, const std::vector<uint32_t>& triPatch,
                             const std::vector<uint8_t>& pinned, const MeshBuffers& surface,
                             const std::vector<uint32_t>& surfacePatch, const std::function<bool(size_t)>& isBad,
-                            double boundDeg, int maxRounds);
+                            double boundDeg, int maxRounds, double deviationFloor = 0);
 
 }  // namespace conformesh::repair

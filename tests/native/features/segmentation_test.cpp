@@ -4,6 +4,7 @@
 #include <cmath>
 #include <fstream>
 #include <iterator>
+#include <map>
 #include <set>
 #include <string>
 
@@ -165,6 +166,33 @@ TEST_CASE("sizing: graded, clamped, smaller where curved") {
     uint32_t a = g.edgeVerts[e][0], b = g.edgeVerts[e][1];
     CHECK(std::abs(sz.h[a] - sz.h[b]) <= 0.5 * g.edgeLength(e) * (1 + 1e-9));
   }
+}
+
+TEST_CASE("sizing: a cut vertex takes the surface's curvature, like its uncut neighbours on the same ring") {
+  // the torus is the same all around its axis, so every vertex at one angle around the tube has
+  // the same size, whether or not one of the cuts (a meridian and a longitude) passes through it;
+  // a cut vertex used to take its cut's turn instead (1/(R + r cos v) along a longitude, not the
+  // tube's 1/r), and the longitude's vertices got larger sizes than their ring
+  const double R = 1.0, r = 0.1;
+  EdgeGraph g = buildEdgeGraph(testshapes::torus(64, 24, R, r));
+  Segmentation s = segment(g, FeatureOptions{});
+  size_t cutEdges = 0;
+  for (uint32_t e = 0; e < g.edgeCount(); ++e) cutEdges += s.edgeKind[e] == EdgeKind::Cut;
+  REQUIRE(cutEdges > 0);
+  SizingOptions so;
+  so.targetEdgeLengthRel = 0.05;
+  so.chordToleranceRel = 1e-4;
+  SizingField sz = computeSizing(g, s, so);
+  std::map<long, std::pair<double, double>> ring;  // tube angle (rounded) -> min, max size
+  for (uint32_t v = 0; v < g.vertexCount; ++v) {
+    const auto& p = g.positions[v];
+    const long key = std::lround(std::atan2(p.z, std::hypot(p.x, p.y) - R) * 1e6);
+    auto it = ring.emplace(key, std::make_pair(sz.h[v], sz.h[v])).first;
+    it->second.first = std::min(it->second.first, sz.h[v]);
+    it->second.second = std::max(it->second.second, sz.h[v]);
+  }
+  CHECK(ring.size() == 24);
+  for (const auto& [key, mm] : ring) CHECK(mm.second <= mm.first * (1 + 1e-9));
 }
 
 TEST_CASE("features: featureWedgeAngles gives the wedges between the input's own feature curves") {
