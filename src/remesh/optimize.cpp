@@ -563,8 +563,13 @@ OptimizeStats optimizePatch(std::vector<double>& xy, std::vector<uint32_t>& tria
       for (uint32_t k = m.starStart[v]; k < m.starStart[v + 1]; ++k)
         for (int c = 0; c < 3; ++c) nextActive[m.tri[3 * size_t(m.starTri[k]) + c]] = 1;
     }
+    // flips between passes give the next pass better stars; after the last of several passes a
+    // flip pass would only mend what the moves left (flips after the second of two passes at the
+    // default: within 0.007 degrees of mean on camelhead, blade, bunny and fandisk, and ~6 % of
+    // the optimization's instructions at fandisk 0.004)
+    const bool lastOfSeveral = it > 0 && it + 1 == o.maxIterations;
     for (size_t v = 0; v < nv; ++v) changed[v] = active[v] | nextActive[v];
-    flips = flipPass(m, nextActive, changed);
+    flips = lastOfSeveral ? 0 : flipPass(m, nextActive, changed);
     st.flips += flips;
     active.swap(nextActive);
     st.iterations = it + 1;
