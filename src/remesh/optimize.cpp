@@ -42,10 +42,9 @@ inline Corner smallestCorner(const Vec3& a, const Vec3& b, const Vec3& c) {
 
 double cornerDeg(const Corner& k) { return ((k.cr == 0 && k.dt == 0) ? 0.0 : dmath::atan2(k.cr, k.dt)) * kRadToDeg; }
 
-// cornerDeg without atan2, to within kApproxErrDeg (NaN for a degenerate corner). atan(z) on
+// cornerDeg without atan2 (NaN for a degenerate corner), for minAngleDeg3Approx: atan(z) on
 // [0, 1] by the polynomial of Abramowitz–Stegun 4.4.49 (Hastings 1955), |error| <= 2e-8 rad
-// (1.2e-6 degrees); the bound used has a margin of ~80 over it.
-constexpr double kApproxErrDeg = 1e-4;
+// (1.2e-6 degrees; optimize.h promises 1e-4).
 double cornerDegApprox(const Corner& k) {
   constexpr double kHalfPi = 1.57079632679489661923, kPi = 3.14159265358979323846;
   const double c = k.cr, d = std::abs(k.dt);
