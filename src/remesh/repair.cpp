@@ -197,12 +197,20 @@ RepairStats relaxBelowBound(MeshBuffers& out, std::vector<uint32_t>& vertexFace,
   const size_t badBefore = bad.size();
   const std::vector<double> positionsBefore = out.positions;
   const std::vector<uint32_t> facesBefore = vertexFace;
-  std::vector<size_t> all = bad;  // every triangle that was below the bound at some point
+  // every triangle that was below the bound or in the star of a moved vertex: a move can push a
+  // star triangle below the bound while it lifts another, so the triangles below the bound are
+  // always among these
+  std::vector<size_t> all = bad;
+  auto tryImprove = [&](uint32_t v, bool room, bool relaxed) {
+    if (!r.improve(v, room, relaxed)) return false;
+    r.starTriangles(v, all);
+    return true;
+  };
   for (; st.rounds < maxRounds && !bad.empty(); ++st.rounds) {
     size_t moved = 0;
     for (size_t t : bad)
       for (int c = 0; c < 3; ++c)
-        if (isBad(t) && r.improve(out.triangles[3 * t + c])) ++moved;
+        if (isBad(t) && tryImprove(out.triangles[3 * t + c], false, false)) ++moved;
     if (moved == 0) {
       // nothing of the triangles themselves moves: their free neighbours make room
       std::vector<uint32_t> ring;
@@ -211,7 +219,7 @@ RepairStats relaxBelowBound(MeshBuffers& out, std::vector<uint32_t>& vertexFace,
       std::sort(ring.begin(), ring.end());
       ring.erase(std::unique(ring.begin(), ring.end()), ring.end());
       for (uint32_t v : ring)
-        if (r.improve(v, true)) ++moved;
+        if (tryImprove(v, true, false)) ++moved;
     }
     if (moved == 0) {
       // nor do the neighbours: a vertex of a triangle below the bound may raise its star's
@@ -219,10 +227,7 @@ RepairStats relaxBelowBound(MeshBuffers& out, std::vector<uint32_t>& vertexFace,
       // triangles that the next passes can lift, camelhead's needle fan at 1.05 %)
       for (size_t t : bad)
         for (int c = 0; c < 3; ++c)
-          if (isBad(t) && r.improve(out.triangles[3 * t + c], false, true)) {
-            ++moved;
-            r.starTriangles(out.triangles[3 * t + c], all);
-          }
+          if (isBad(t) && tryImprove(out.triangles[3 * t + c], false, true)) ++moved;
     }
     st.moves += moved;
     if (moved == 0) break;
