@@ -239,10 +239,11 @@ RepairStats relaxBelowBound(MeshBuffers& out, std::vector<uint32_t>& vertexFace,
     bad.swap(still);
   }
   st.left = bad.size();
-  if (st.left > badBefore) {
+  if (st.left > badBefore) {  // undone: no move stands
     out.positions = positionsBefore;
     vertexFace = facesBefore;
     st.left = badBefore;
+    st.moves = 0;
   }
   return st;
 }

@@ -30,7 +30,7 @@
 namespace conformesh::repair {
 
 struct RepairStats {
-  size_t moves = 0;   //!< accepted vertex moves
+  size_t moves = 0;   //!< accepted vertex moves (0 when the repair was undone)
   int rounds = 0;     //!< passes over the triangles below the bound
   size_t left = 0;    //!< triangles still below the bound (and not exempt) at the end
 };
