@@ -89,6 +89,25 @@ constexpr double kRepairDeviationFloor = 0.25;
 // cuts along input edges are not sawtooths of needle edges (mesh/precondition.h).
 constexpr double kPreconditionEdgeFactor = 2.0;
 
+// Vertex v of m becomes vertex id[v] (kNone: dropped) of a mesh with `count` vertices; the
+// triangles and edges follow.
+void renumberVertices(planar::PlanarMesh& m, const std::vector<uint32_t>& id, size_t count) {
+  std::vector<double> points(2 * count), param(count);
+  std::vector<int32_t> segment(count);
+  for (size_t v = 0; v < id.size(); ++v) {
+    if (id[v] == kNone) continue;
+    points[2 * size_t(id[v])] = m.points[2 * v];
+    points[2 * size_t(id[v]) + 1] = m.points[2 * v + 1];
+    segment[id[v]] = m.vertexSegment[v];
+    param[id[v]] = m.vertexParam[v];
+  }
+  m.points.swap(points);
+  m.vertexSegment.swap(segment);
+  m.vertexParam.swap(param);
+  for (uint32_t& v : m.triangles) v = id[v];
+  for (uint32_t& v : m.edges) v = id[v];
+}
+
 // Remove the vertices from index `keep` on that no triangle uses (a required point that a later
 // boundary split left outside the domain, or one inserted twice), renumbering the rest: every
 // vertex of a patch's meshing becomes an output vertex.
@@ -102,19 +121,7 @@ void dropUnusedPoints(planar::PlanarMesh& m, size_t keep) {
     if (v < keep || id[v] == 0) id[v] = uint32_t(next++);
     else any = true;
   }
-  if (!any) return;
-  for (size_t v = 0; v < nv; ++v) {
-    if (id[v] == kNone) continue;
-    m.points[2 * id[v]] = m.points[2 * v];
-    m.points[2 * id[v] + 1] = m.points[2 * v + 1];
-    m.vertexSegment[id[v]] = m.vertexSegment[v];
-    m.vertexParam[id[v]] = m.vertexParam[v];
-  }
-  m.points.resize(2 * next);
-  m.vertexSegment.resize(next);
-  m.vertexParam.resize(next);
-  for (uint32_t& v : m.triangles) v = id[v];
-  for (uint32_t& v : m.edges) v = id[v];
+  if (any) renumberVertices(m, id, next);
 }
 
 // Renumber the vertices from index `keep` on along a Hilbert curve over their planar positions,
@@ -131,18 +138,7 @@ void spatialOrder(planar::PlanarMesh& m, size_t keep) {
   std::vector<uint32_t> id(nv);
   for (size_t v = 0; v < keep; ++v) id[v] = uint32_t(v);
   for (size_t i = 0; i < order.size(); ++i) id[order[i]] = uint32_t(keep + i);
-  const std::vector<double> points = m.points;
-  const std::vector<int32_t> segment = m.vertexSegment;
-  const std::vector<double> param = m.vertexParam;
-  for (size_t v = keep; v < nv; ++v) {
-    const uint32_t u = id[v];
-    m.points[2 * size_t(u)] = points[2 * v];
-    m.points[2 * size_t(u) + 1] = points[2 * v + 1];
-    m.vertexSegment[u] = segment[v];
-    m.vertexParam[u] = param[v];
-  }
-  for (uint32_t& v : m.triangles) v = id[v];
-  for (uint32_t& v : m.edges) v = id[v];
+  renumberVertices(m, id, nv);
   // triangles: rotated to start at their smallest vertex (orientation kept), then sorted
   const size_t nt = m.triangleCount();
   std::vector<std::array<uint32_t, 3>> tris(nt);
