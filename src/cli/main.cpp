@@ -45,6 +45,14 @@ void reexecWithHugePages(char** argv) {
   if (const char* pre = std::getenv("LD_PRELOAD"); pre && std::strstr(pre, "vgpreload")) return;
   int major = 0, minor = 0;
   if (std::sscanf(gnu_get_libc_version(), "%d.%d", &major, &minor) != 2 || major * 100 + minor < 235) return;
+  // started through the dynamic loader (`ld.so ./conformesh …`): /proc/self/exe is the loader,
+  // which would take the first argument for the program to run
+  char exe[4096];
+  const ssize_t len = readlink("/proc/self/exe", exe, sizeof exe - 1);
+  if (len <= 0) return;
+  exe[len] = 0;
+  const char* base = std::strrchr(exe, '/');
+  if (std::strncmp(base ? base + 1 : exe, "ld-", 3) == 0 || std::strncmp(base ? base + 1 : exe, "ld.so", 5) == 0) return;
   std::ifstream thp("/sys/kernel/mm/transparent_hugepage/enabled");
   std::string mode;
   if (!std::getline(thp, mode) || mode.find("[madvise]") == std::string::npos) return;
