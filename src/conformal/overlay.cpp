@@ -438,17 +438,29 @@ Pullback::Pullback(std::vector<double> inputPositions, std::vector<int> inputTri
   }
 }
 
-bool Pullback::faceCoords(int t, double x, double y, double B[3], double& score) const {
+void Pullback::faceProducts(int t, double x, double y, double w[3], double& area) const {
   const double* a = &xy_[2 * fTri_[3 * t]];
   const double* b = &xy_[2 * fTri_[3 * t + 1]];
   const double* d = &xy_[2 * fTri_[3 * t + 2]];
-  const double area = (b[0] - a[0]) * (d[1] - a[1]) - (b[1] - a[1]) * (d[0] - a[0]);
-  if (!(area > 0)) return false;
-  B[0] = ((b[0] - x) * (d[1] - y) - (b[1] - y) * (d[0] - x)) / area;
-  B[1] = ((d[0] - x) * (a[1] - y) - (d[1] - y) * (a[0] - x)) / area;
+  area = (b[0] - a[0]) * (d[1] - a[1]) - (b[1] - a[1]) * (d[0] - a[0]);
+  w[0] = (b[0] - x) * (d[1] - y) - (b[1] - y) * (d[0] - x);
+  w[1] = (d[0] - x) * (a[1] - y) - (d[1] - y) * (a[0] - x);
+  w[2] = (a[0] - x) * (b[1] - y) - (a[1] - y) * (b[0] - x);
+}
+
+double Pullback::coordsFrom(const double w[3], double area, double B[3]) const {
+  B[0] = w[0] / area;
+  B[1] = w[1] / area;
   B[2] = 1 - B[0] - B[1];
   // Signed distance-like measure relative to the domain size.
-  score = std::min(B[0], std::min(B[1], B[2])) * std::sqrt(area) / diam_;
+  return std::min(B[0], std::min(B[1], B[2])) * std::sqrt(area) / diam_;
+}
+
+bool Pullback::faceCoords(int t, double x, double y, double B[3], double& score) const {
+  double w[3], area;
+  faceProducts(t, x, y, w, area);
+  if (!(area > 0)) return false;
+  score = coordsFrom(w, area, B);
   return true;
 }
 
@@ -487,21 +499,13 @@ int Pullback::walk(double x, double y, int hintFace, double B[3], int& steps) co
   for (int step = 0; step < kMaxSteps; ++step) {
     // Most steps only ask which edge the point is beyond: the signs of the barycentric
     // coordinates times the face's doubled area (no division or square root); where the point
-    // is inside, the coordinates and score are faceCoords' (the grid search's) exactly.
-    const double* a = &xy_[2 * fTri_[3 * t]];
-    const double* b = &xy_[2 * fTri_[3 * t + 1]];
-    const double* d = &xy_[2 * fTri_[3 * t + 2]];
-    const double area = (b[0] - a[0]) * (d[1] - a[1]) - (b[1] - a[1]) * (d[0] - a[0]);
+    // is inside, the coordinates and score are faceCoords' (the grid search's).
+    double w[3], area;
+    faceProducts(t, x, y, w, area);
     if (!(area > 0)) return -1;
-    const double w[3] = {(b[0] - x) * (d[1] - y) - (b[1] - y) * (d[0] - x), (d[0] - x) * (a[1] - y) - (d[1] - y) * (a[0] - x),
-                         (a[0] - x) * (b[1] - y) - (a[1] - y) * (b[0] - x)};
     int k;
     if (w[0] > 0 && w[1] > 0 && w[2] > 0) {
-      // faceCoords' coordinates and score, from the same products
-      B[0] = w[0] / area;
-      B[1] = w[1] / area;
-      B[2] = 1 - B[0] - B[1];
-      const double m = std::min(B[0], std::min(B[1], B[2])) * std::sqrt(area) / diam_;
+      const double m = coordsFrom(w, area, B);
       if (m >= kSurelyInside) {
         steps = step;
         return t;

@@ -97,8 +97,14 @@ class Pullback {
   std::vector<double> xy_;         // 2 nV layout positions
   std::vector<int> fTri_;          // 3 nFinal final triangles
   OverlayMap finalToDelaunay_, delaunayToInput_;
-  // Barycentrics of (x, y) in final face t and the grid search's score (min coordinate times
-  // sqrt(area) / diam); false when t has no positive area.
+  // Twice the signed areas of final face t (`area`) and of the triangles (x, y) makes with its
+  // edge opposite each corner (w): the barycentrics times the area, without a division.
+  void faceProducts(int t, double x, double y, double w[3], double& area) const;
+  // The barycentrics from those products (area > 0) and the grid search's score (min coordinate
+  // times sqrt(area) / diam).
+  double coordsFrom(const double w[3], double area, double B[3]) const;
+  // Barycentrics of (x, y) in final face t and the grid search's score; false when t has no
+  // positive area.
   bool faceCoords(int t, double x, double y, double B[3], double& score) const;
   // From final face t and the (unclamped) barycentrics of the point there to the input surface.
   bool finish(int t, const double B[3], PullbackPoint& out) const;
