@@ -42,35 +42,36 @@ inline Corner smallestCorner(const Vec3& a, const Vec3& b, const Vec3& c) {
 
 double cornerDeg(const Corner& k) { return ((k.cr == 0 && k.dt == 0) ? 0.0 : dmath::atan2(k.cr, k.dt)) * kRadToDeg; }
 
-// cornerDeg without atan2 (NaN for a degenerate corner), for minAngleDeg3Approx: atan(z) on
-// [0, 1] by the polynomial of Abramowitz–Stegun 4.4.49 (Hastings 1955), |error| <= 2e-8 rad
-// (1.2e-6 degrees; optimize.h promises 1e-4).
-double cornerDegApprox(const Corner& k) {
+// cornerDeg without atan2 (NaN for a degenerate corner): atan(z) = z · atanOverZ(z²) on [0, 1],
+// the other octants by symmetry.
+template <class AtanOverZ>
+double cornerDegBy(const Corner& k, AtanOverZ atanOverZ) {
   constexpr double kHalfPi = 1.57079632679489661923, kPi = 3.14159265358979323846;
   const double c = k.cr, d = std::abs(k.dt);
   const bool steep = c > d;
-  const double z = steep ? d / c : c / d, z2 = z * z;
-  const double p = 1 + z2 * (-0.3333314528 + z2 * (0.1999355085 + z2 * (-0.1420889944 + z2 * (0.1065626393 + z2 * (-0.0752896400 + z2 * (0.0429096138 + z2 * (-0.0161657367 + z2 * 0.0028662257)))))));
+  const double z = steep ? d / c : c / d;
+  const double p = atanOverZ(z * z);
   double r = steep ? kHalfPi - z * p : z * p;
   if (k.dt < 0) r = kPi - r;
   return r * kRadToDeg;
 }
 
-// A cheaper screen than cornerDegApprox, to within kCoarseErrDeg: atan(z) on [0, 1] by the
-// polynomial of Abramowitz–Stegun 4.4.47 (Hastings 1955), |error| <= 1.15e-5 rad (6.6e-4 degrees,
-// measured on 2e7 points; the book states 1e-5); the bound used has a margin of 3 over it. Five
-// terms instead of nine: it answers the accept/reject screens of the moves and flips, where a
-// candidate within the bound of the decision goes on to atan2 anyway.
+// For minAngleDeg3Approx: the polynomial of Abramowitz–Stegun 4.4.49 (Hastings 1955), |error| <=
+// 2e-8 rad (1.2e-6 degrees; optimize.h promises 1e-4).
+double cornerDegApprox(const Corner& k) {
+  return cornerDegBy(k, [](double z2) {
+    return 1 + z2 * (-0.3333314528 + z2 * (0.1999355085 + z2 * (-0.1420889944 + z2 * (0.1065626393 + z2 * (-0.0752896400 + z2 * (0.0429096138 + z2 * (-0.0161657367 + z2 * 0.0028662257)))))));
+  });
+}
+
+// A cheaper screen, to within kCoarseErrDeg: the polynomial of Abramowitz–Stegun 4.4.47,
+// |error| <= 1.15e-5 rad (6.6e-4 degrees, measured on 2e7 points; the book states 1e-5); the
+// bound used has a margin of 3 over it. Five terms instead of nine: it answers the accept/reject
+// screens of the moves and flips, where a candidate within the bound of the decision goes on to
+// atan2 anyway.
 constexpr double kCoarseErrDeg = 2e-3;
 double cornerDegCoarse(const Corner& k) {
-  constexpr double kHalfPi = 1.57079632679489661923, kPi = 3.14159265358979323846;
-  const double c = k.cr, d = std::abs(k.dt);
-  const bool steep = c > d;
-  const double z = steep ? d / c : c / d, z2 = z * z;
-  const double p = 0.9998660 + z2 * (-0.3302995 + z2 * (0.1801410 + z2 * (-0.0851330 + z2 * 0.0208351)));
-  double r = steep ? kHalfPi - z * p : z * p;
-  if (k.dt < 0) r = kPi - r;
-  return r * kRadToDeg;
+  return cornerDegBy(k, [](double z2) { return 0.9998660 + z2 * (-0.3302995 + z2 * (0.1801410 + z2 * (-0.0851330 + z2 * 0.0208351))); });
 }
 
 // Circumcenter of a planar triangle; false when it is degenerate.
@@ -566,9 +567,11 @@ OptimizeStats optimizePatch(std::vector<double>& xy, std::vector<uint32_t>& tria
     // flip pass would only mend what the moves left (flips after the second of two passes at the
     // default: within 0.007 degrees of mean on camelhead, blade, bunny and fandisk, and ~6 % of
     // the optimization's instructions at fandisk 0.004)
-    const bool lastOfSeveral = it > 0 && it + 1 == o.maxIterations;
-    for (size_t v = 0; v < nv; ++v) changed[v] = active[v] | nextActive[v];
-    flips = lastOfSeveral ? 0 : flipPass(m, nextActive, changed);
+    flips = 0;
+    if (!(it > 0 && it + 1 == o.maxIterations)) {
+      for (size_t v = 0; v < nv; ++v) changed[v] = active[v] | nextActive[v];
+      flips = flipPass(m, nextActive, changed);
+    }
     st.flips += flips;
     active.swap(nextActive);
     st.iterations = it + 1;
