@@ -253,7 +253,8 @@ class Pipeline {
   const RemeshOptions& opt_;
   const ProgressFn& progress_;
   Preconditioned pre_;  // the input after mesh/precondition.h (the first vertices are the input's)
-  std::vector<double> surfaceKappa_;  // features::surfaceCurvature of the input, per vertex of pre_.mesh (empty: not preconditioned)
+  // The chord tolerance in the input's units (the sizing's, features/sizing.h).
+  double chordTolerance() const { return opt_.chordTolerance >= 0 ? opt_.chordTolerance : opt_.chordToleranceRel * sizing_.diagonal; }
   F::EdgeGraph g_;
   const MeshBuffers* graphMesh_ = nullptr;  // the mesh g_ was built from (same vertex and face indices)
   F::Segmentation seg_;
@@ -855,7 +856,7 @@ void Pipeline::optimizeMesh(uint32_t p, const std::vector<uint8_t>& active) {
   // 1.55e-3 of the diagonal (+14 %, both one-sided maxima at one spot); guarded 1.34e-3,
   // with the same mean min angle on all 12 models (within 0.05°)
   optimization::SurfaceSamples guard;
-  const double tolerance = opt_.chordTolerance >= 0 ? opt_.chordTolerance : opt_.chordToleranceRel * sizing_.diagonal;
+  const double tolerance = chordTolerance();
   // a patch within tolerance/2 of a plane needs no guard: the input patch and every output
   // triangle over it (vertices on the input) lie in that slab and share the boundary curves, so
   // no moving can take the output farther than the tolerance from the input there (a CAD model's
@@ -1338,6 +1339,8 @@ RemeshResult Pipeline::run(const MeshBuffers& input) {
   // strips narrower than half the smallest edge the sizing allows (its minLength) are merged
   // into a neighbour (features/segmentation.h)
   fo.minPatchWidth = opt_.minPatchWidth >= 0 ? opt_.minPatchWidth : 0.5 * (opt_.minEdgeLength > 0 ? opt_.minEdgeLength : 0.1 * target);
+  // the input's surface curvature per vertex of the preconditioned mesh (empty: not preconditioned)
+  std::vector<double> surfaceKappa;
   {  // input edges no longer than twice the target, flat pairs Delaunay (mesh/precondition.h),
      // in the patches that need cuts (only there do curves follow input edges that are not
      // features): a first segmentation of the input finds them
@@ -1364,10 +1367,10 @@ RemeshResult Pipeline::run(const MeshBuffers& input) {
       // the surface's curvature from the input as given (features/sizing.h), carried to the
       // split points (each the larger of its edge's two ends): the precondition's splits
       // depend on the target, and short split edges would change the estimate
-      surfaceKappa_ = F::surfaceCurvature(g_);
-      surfaceKappa_.resize(pre_.mesh.vertexCount(), 0.0);
-      for (size_t v = in.vertexCount(); v < surfaceKappa_.size(); ++v)
-        surfaceKappa_[v] = std::max(surfaceKappa_[pre_.parents[v][0]], surfaceKappa_[pre_.parents[v][1]]);
+      surfaceKappa = F::surfaceCurvature(g_);
+      surfaceKappa.resize(pre_.mesh.vertexCount(), 0.0);
+      for (size_t v = in.vertexCount(); v < surfaceKappa.size(); ++v)
+        surfaceKappa[v] = std::max(surfaceKappa[pre_.parents[v][0]], surfaceKappa[pre_.parents[v][1]]);
       fo.featureEdges = pre_.protectedEdges;
       g_ = F::buildEdgeGraph(pre_.mesh);
       graphMesh_ = &pre_.mesh;
@@ -1382,7 +1385,7 @@ RemeshResult Pipeline::run(const MeshBuffers& input) {
   so.gradation = opt_.gradation;
   so.minEdgeLength = opt_.minEdgeLength;
   so.maxEdgeLength = opt_.maxEdgeLength;
-  so.surfaceKappa = std::move(surfaceKappa_);
+  so.surfaceKappa = std::move(surfaceKappa);
   if (pre_.splits > 0) so.firstSplitVertex = uint32_t(in.vertexCount());
   if (!opt_.vertexSizing.empty()) {
     if (opt_.vertexSizing.size() != input.vertexCount())
@@ -1584,9 +1587,8 @@ RemeshResult Pipeline::run(const MeshBuffers& input) {
       return minAngleBelow(out, t, opt_.minAngleDeg, cosBound) && exemptCornerOf(out, t, exemptVertex) == kNone;
     };
     // a repaired star may always be a quarter of the chord tolerance from the input
-    const double chordTol = opt_.chordTolerance >= 0 ? opt_.chordTolerance : opt_.chordToleranceRel * sizing_.diagonal;
     const repair::RepairStats rs = repair::relaxBelowBound(out, vertexFace, triPatch, pinned, *graphMesh_, seg_.facePatch, isBad,
-                                                           opt_.minAngleDeg, kRepairRounds, kRepairDeviationFloor * chordTol);
+                                                           opt_.minAngleDeg, kRepairRounds, kRepairDeviationFloor * chordTolerance());
     rep_.repairMoves = rs.moves;
     if (rs.rounds >= kRepairRounds && rs.left > 0)
       rep_.warnings.push_back("repair stopped at its cap of " + std::to_string(kRepairRounds) + " passes with " +
