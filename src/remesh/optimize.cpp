@@ -132,41 +132,40 @@ double distance2(const Mesh& m, const uint32_t* t, const Vec3& x) {
   return quality::distanceSquared(X, quality::closestPointOnTriangle(X, q(m.pos[t[0]]), q(m.pos[t[1]]), q(m.pos[t[2]])));
 }
 
-// Sort the guard points into the triangles that contain them. Points outside every triangle
-// (beyond a boundary chord) are not tracked.
-void bucketGuard(Mesh& m) {
-  const size_t nt = m.tri.size() / 3, ns = m.guard->pos.size();
-  m.head.assign(nt, kNoTri);
-  m.next.assign(ns, kNoTri);
-  m.err.assign(nt, 0.0);
-  if (nt == 0 || ns == 0) return;
+// Sort the guard points pts into the triangles tris (ascending indices) that contain them; the
+// lists of tris must be empty. A point on an edge goes to the first of them (smallest index)
+// containing it; points in none of them (beyond a boundary chord) are not tracked.
+void bucketGuard(Mesh& m, const std::vector<uint32_t>& tris, const std::vector<uint32_t>& pts) {
+  if (tris.empty() || pts.empty()) return;
+  const double* xy = m.guard->xy.data();
   double lo[2] = {INFINITY, INFINITY}, hi[2] = {-INFINITY, -INFINITY};
-  for (size_t i = 0; i < m.xy.size(); ++i) lo[i % 2] = std::min(lo[i % 2], m.xy[i]), hi[i % 2] = std::max(hi[i % 2], m.xy[i]);
+  for (const uint32_t k : pts)
+    for (int d = 0; d < 2; ++d) lo[d] = std::min(lo[d], xy[2 * size_t(k) + d]), hi[d] = std::max(hi[d], xy[2 * size_t(k) + d]);
   // a grid over the points (far fewer than the triangles: a patch's input vertices against its
   // output mesh), about one point per cell; each triangle then tests the points of the cells its
-  // box covers. A point on an edge goes to the first triangle (smallest index) containing it.
-  const int g = std::max(1, std::min(4096, int(std::sqrt(double(ns)))));
+  // box covers (a point in a triangle is in a cell of its box: the cells are monotone in x, y)
+  const int g = std::max(1, std::min(4096, int(std::sqrt(double(pts.size())))));
   auto cell = [&](double x, int d) {
     const double f = hi[d] > lo[d] ? (x - lo[d]) / (hi[d] - lo[d]) : 0.0;
     return std::clamp(int(f * g), 0, g - 1);
   };
   std::vector<uint32_t> start(size_t(g) * g + 1, 0), items;
   auto cellOf = [&](uint32_t k) {
-    const double* p = &m.guard->xy[2 * size_t(k)];
-    if (!(p[0] >= lo[0] && p[0] <= hi[0] && p[1] >= lo[1] && p[1] <= hi[1])) return size_t(SIZE_MAX);
+    const double* p = &xy[2 * size_t(k)];
+    if (!(p[0] >= lo[0] && p[0] <= hi[0] && p[1] >= lo[1] && p[1] <= hi[1])) return size_t(SIZE_MAX);  // NaN
     return size_t(cell(p[1], 1)) * g + cell(p[0], 0);
   };
-  for (uint32_t k = 0; k < ns; ++k)
+  for (const uint32_t k : pts)
     if (const size_t c = cellOf(k); c != SIZE_MAX) ++start[c + 1];
   for (size_t c = 0; c + 1 < start.size(); ++c) start[c + 1] += start[c];
   items.resize(start.back());
   {
     std::vector<uint32_t> fill(start.begin(), start.end() - 1);
-    for (uint32_t k = 0; k < ns; ++k)
+    for (const uint32_t k : pts)
       if (const size_t c = cellOf(k); c != SIZE_MAX) items[fill[c]++] = k;
   }
-  std::vector<uint8_t> placed(ns, 0);
-  for (uint32_t t = 0; t < nt; ++t) {
+  std::vector<uint8_t> placed(start.back(), 0);  // per item
+  for (const uint32_t t : tris) {
     const uint32_t* v = &m.tri[3 * size_t(t)];
     int r[4];  // i0, j0, i1, j1
     for (int d = 0; d < 2; ++d) {
@@ -178,14 +177,48 @@ void bucketGuard(Mesh& m) {
         const size_t c = size_t(j) * g + i;
         for (uint32_t q = start[c]; q < start[c + 1]; ++q) {
           const uint32_t k = items[q];
-          if (placed[k] || !contains(m, v, &m.guard->xy[2 * size_t(k)])) continue;
-          placed[k] = 1;
+          if (placed[q] || !contains(m, v, &xy[2 * size_t(k)])) continue;
+          placed[q] = 1;
           m.next[k] = m.head[t];
           m.head[t] = k;
           m.err[t] = std::max(m.err[t], distance2(m, v, m.guard->pos[k]));
         }
       }
   }
+}
+
+// All the guard points into all triangles.
+void bucketGuard(Mesh& m) {
+  const size_t nt = m.tri.size() / 3, ns = m.guard->pos.size();
+  m.head.assign(nt, kNoTri);
+  m.next.assign(ns, kNoTri);
+  m.err.assign(nt, 0.0);
+  std::vector<uint32_t> tris(nt), pts(ns);
+  for (size_t t = 0; t < nt; ++t) tris[t] = uint32_t(t);
+  for (size_t k = 0; k < ns; ++k) pts[k] = uint32_t(k);
+  bucketGuard(m, tris, pts);
+}
+
+// The buckets a previous call left (m.head, m.next, m.err) after vertices moved: only the
+// triangles `changed` (ascending; every triangle with a moved vertex among them) can have lost
+// or gained points. Their points and the untracked ones are sorted again into them.
+void rebucketGuard(Mesh& m, const std::vector<uint32_t>& changed) {
+  const size_t ns = m.guard->pos.size();
+  std::vector<uint8_t> tracked(ns, 0);
+  for (const uint32_t h : m.head)
+    for (uint32_t k = h; k != kNoTri; k = m.next[k]) tracked[k] = 1;
+  std::vector<uint32_t> pts;
+  for (const uint32_t t : changed) {
+    for (uint32_t k = m.head[t]; k != kNoTri; k = m.next[k]) tracked[k] = 0;
+    m.head[t] = kNoTri;
+    m.err[t] = 0;
+  }
+  for (size_t k = 0; k < ns; ++k)
+    if (!tracked[k]) {
+      m.next[k] = kNoTri;
+      pts.push_back(uint32_t(k));
+    }
+  bucketGuard(m, changed, pts);
 }
 
 // Would the guard keep the change that made triangles ts[0..n) (a star, or the two triangles
@@ -499,28 +532,43 @@ OptimizeStats optimizePatch(std::vector<double>& xy, std::vector<uint32_t>& tria
   const size_t nt = triangles.size() / 3;
   // the previous call's min angles stand where no vertex moved since (the same positions give
   // the same values); its adjacency stands as the triangles are the same
-  const bool reuse = cache && active0.size() == xy.size() / 2 && cache->minAngle.size() == nt && cache->adjacency.size() == 3 * nt;
+  const size_t nv = xy.size() / 2;
+  const bool reuse = cache && active0.size() == nv && cache->minAngle.size() == nt && cache->adjacency.size() == 3 * nt;
+  std::vector<uint32_t> changedTris;  // with reuse: the triangles with an active vertex
+  if (!guard.pos.empty()) m.guard = &guard;
   if (reuse) {
     m.minAngle.swap(cache->minAngle);
     m.adj.swap(cache->adjacency);
     for (size_t t = 0; t < nt; ++t) {
       const uint32_t* v = &triangles[3 * t];
-      if (active0[v[0]] || active0[v[1]] || active0[v[2]]) m.minAngle[t] = m.triMin(uint32_t(t));
+      if (active0[v[0]] || active0[v[1]] || active0[v[2]]) {
+        m.minAngle[t] = m.triMin(uint32_t(t));
+        changedTris.push_back(uint32_t(t));
+      }
+    }
+    if (cache->starStart.size() == nv + 1) {
+      m.starStart.swap(cache->starStart);
+      m.starTri.swap(cache->starTri);
     }
   } else {
     m.cacheAll();
   }
-  if (!guard.pos.empty()) {
-    m.guard = &guard;
-    bucketGuard(m);
+  if (m.guard) {
+    if (reuse && cache->guardHead.size() == nt && cache->guardNext.size() == guard.pos.size() && cache->guardErr.size() == nt) {
+      m.head.swap(cache->guardHead);
+      m.next.swap(cache->guardNext);
+      m.err.swap(cache->guardErr);
+      rebucketGuard(m, changedTris);
+    } else {
+      bucketGuard(m);
+    }
   }
   st.meanMinAngleBefore = st.meanMinAngleAfter = meanMin(m);
-  const size_t nv = xy.size() / 2;
   double last = st.meanMinAngleBefore;
   // active set: a vertex is visited while it or a neighbour moved (or a flip touched its star)
   // in the previous pass
   std::vector<uint8_t> active = active0.size() == nv ? active0 : std::vector<uint8_t>(nv, 1), nextActive(nv, 0), changed(nv, 0);
-  m.buildStars();
+  if (m.starStart.size() != nv + 1) m.buildStars();
   if (!reuse) buildAdjacency(m);
   size_t flips = 0;
   for (int it = 0; it < o.maxIterations; ++it) {
@@ -583,6 +631,13 @@ OptimizeStats optimizePatch(std::vector<double>& xy, std::vector<uint32_t>& tria
   if (cache) {
     cache->minAngle.swap(m.minAngle);
     cache->adjacency.swap(m.adj);
+    // the stars are current unless the last pass flipped
+    if (flips > 0) m.starStart.clear(), m.starTri.clear();
+    cache->starStart.swap(m.starStart);
+    cache->starTri.swap(m.starTri);
+    cache->guardHead.swap(m.head);
+    cache->guardNext.swap(m.next);
+    cache->guardErr.swap(m.err);
   }
   return st;
 }

@@ -64,6 +64,11 @@ struct SurfaceSamples {
 struct OptimizeCache {
   std::vector<double> minAngle;  //!< per triangle, its 3D min angle (degrees)
   std::vector<uint32_t> adjacency;  //!< per triangle side, the triangle across it
+  std::vector<uint32_t> starStart, starTri;  //!< vertex -> triangles (core/vertex_stars.h); empty when stale
+  //! the guard's points per triangle (a list: head per triangle, next per point) and the largest
+  //! squared distance from them to the triangle; empty without a guard
+  std::vector<uint32_t> guardHead, guardNext;
+  std::vector<double> guardErr;
 };
 OptimizeStats optimizePatch(std::vector<double>& xy, std::vector<uint32_t>& triangles, std::vector<features::Vec3>& pos,
                             const std::vector<uint8_t>& fixed, const LiftFn& lift, const OptimizeOptions& options,

@@ -915,7 +915,13 @@ std::vector<std::vector<uint8_t>> Pipeline::slideSamples() {
     const PatchWork& w = *work_[p];
     Star& st = stars[p];
     const size_t nv = w.localToGlobal.size(), nt = w.triangles.size() / 3;
-    vertexStars(w.triangles, nv, st.start, st.tri);
+    // the latest optimization's stars when it left them (the same triangles)
+    if (work_[p]->optimizeCache.starStart.size() == nv + 1) {
+      st.start.swap(work_[p]->optimizeCache.starStart);
+      st.tri.swap(work_[p]->optimizeCache.starTri);
+    } else {
+      vertexStars(w.triangles, nv, st.start, st.tri);
+    }
     // the patch's latest optimization left these very values (minAngleDeg3 of the same
     // positions: only optimizations and slides move vertices, and each keeps them current)
     if (work_[p]->optimizeCache.minAngle.size() == nt) {
@@ -1133,7 +1139,12 @@ std::vector<std::vector<uint8_t>> Pipeline::slideSamples() {
     activeS.swap(nextS);
   }
   // the min angles, kept exact through the slides, go back for the next optimization
-  for (uint32_t p = 0; p < work_.size(); ++p) work_[p]->optimizeCache.minAngle.swap(stars[p].minAngle);
+  // so do the stars
+  for (uint32_t p = 0; p < work_.size(); ++p) {
+    work_[p]->optimizeCache.minAngle.swap(stars[p].minAngle);
+    work_[p]->optimizeCache.starStart.swap(stars[p].start);
+    work_[p]->optimizeCache.starTri.swap(stars[p].tri);
+  }
   optimizeSeconds_ += elapsed(t0);
   return slid;
 }

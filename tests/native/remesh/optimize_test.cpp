@@ -178,6 +178,18 @@ double guardDistance(const std::vector<double>& xy, const std::vector<uint32_t>&
   }
   return worst;
 }
+
+// Guard points: a regular (n + 1) x (n + 1) lattice of the surface over the unit square.
+optimization::SurfaceSamples latticeGuard(const std::function<Vec3(double, double)>& surface, int n) {
+  optimization::SurfaceSamples guard;
+  for (int j = 0; j <= n; ++j)
+    for (int i = 0; i <= n; ++i) {
+      guard.xy.push_back(double(i) / n);
+      guard.xy.push_back(double(j) / n);
+      guard.pos.push_back(surface(double(i) / n, double(j) / n));
+    }
+  return guard;
+}
 }  // namespace
 
 TEST_CASE("optimize: with a guard, the output gets no farther from the guard points than the tolerance or than it was") {
@@ -185,14 +197,7 @@ TEST_CASE("optimize: with a guard, the output gets no farther from the guard poi
   Grid g = jitteredGrid(10, 0.35);
   std::vector<Vec3> pos;
   for (size_t v = 0; v < g.fixed.size(); ++v) pos.push_back(surface(g.xy[2 * v], g.xy[2 * v + 1]));
-  // guard points: a regular 23 x 23 lattice of the surface
-  optimization::SurfaceSamples guard;
-  for (int j = 0; j <= 22; ++j)
-    for (int i = 0; i <= 22; ++i) {
-      guard.xy.push_back(i / 22.0);
-      guard.xy.push_back(j / 22.0);
-      guard.pos.push_back(surface(i / 22.0, j / 22.0));
-    }
+  optimization::SurfaceSamples guard = latticeGuard(surface, 22);
   const double before = guardDistance(g.xy, g.tri, pos, guard);
   REQUIRE(before > 0);
   auto lift = [&](uint32_t, double x, double y, Vec3& out) {
@@ -245,5 +250,49 @@ TEST_CASE("optimize: an empty first active set changes nothing; a partial one mo
     optimization::optimizePatch(h.xy, h.tri, p, h.fixed, lift, o, active);
     for (size_t v = 0; v < h.fixed.size(); ++v)
       if (v != v0) CHECK(h.xy[2 * v] == g.xy[2 * v]);
+  }
+}
+
+TEST_CASE("optimize: a second call with the first one's cache does what a call without it does") {
+  // a guarded paraboloid patch, optimized once; then boundary vertices slide along their side
+  // (as the pipeline's curve samples do between its two optimizations) and the vertices of their
+  // stars are optimized again, with the cache the first call left and without it
+  auto surface = [](double x, double y) { return Vec3{x, y, 0.8 * (x * x + y * y)}; };
+  auto lift = [&](uint32_t, double x, double y, Vec3& out) {
+    if (x < 0 || y < 0 || x > 1 || y > 1) return false;
+    out = surface(x, y);
+    return true;
+  };
+  for (int passes : {1, 2}) {
+    INFO("passes " << passes);
+    Grid g = jitteredGrid(12, 0.35);
+    std::vector<Vec3> pos;
+    for (size_t v = 0; v < g.fixed.size(); ++v) pos.push_back(surface(g.xy[2 * v], g.xy[2 * v + 1]));
+    optimization::SurfaceSamples guard = latticeGuard(surface, 30);
+    guard.tolerance = 0.25 * guardDistance(g.xy, g.tri, pos, guard);
+    optimization::OptimizeOptions o;
+    o.minAngleDeg = 20;
+    o.maxIterations = passes;
+    optimization::OptimizeCache cache;
+    optimization::optimizePatch(g.xy, g.tri, pos, g.fixed, lift, o, {}, guard, &cache);
+    std::vector<uint8_t> active(g.fixed.size(), 0);
+    for (uint32_t i : {3u, 7u}) {  // vertices (i, 0) of the bottom side slide a third of a cell
+      const uint32_t v = i;
+      g.xy[2 * v] += 1.0 / 36;
+      pos[v] = surface(g.xy[2 * v], g.xy[2 * v + 1]);
+      for (size_t t = 0; t < g.tri.size(); t += 3)
+        if (g.tri[t] == v || g.tri[t + 1] == v || g.tri[t + 2] == v)
+          for (int c = 0; c < 3; ++c) active[g.tri[t + c]] = 1;
+    }
+    Grid h = g;
+    std::vector<Vec3> p = pos;
+    const auto withCache = optimization::optimizePatch(g.xy, g.tri, pos, g.fixed, lift, o, active, guard, &cache);
+    const auto without = optimization::optimizePatch(h.xy, h.tri, p, h.fixed, lift, o, active, guard);
+    CHECK(withCache.moves > 0);
+    CHECK(withCache.moves == without.moves);
+    CHECK(withCache.flips == without.flips);
+    CHECK(g.xy == h.xy);
+    CHECK(g.tri == h.tri);
+    CHECK(withCache.meanMinAngleAfter == without.meanMinAngleAfter);
   }
 }
