@@ -64,6 +64,12 @@ double cornerDegApprox(const Corner& k) {
   });
 }
 
+// The optimizer works with cornerDegApprox's values (a tenth of atan2's cost): the moves and
+// flips are ranked and decided by them. Only where the bound is at stake, within kApproxErrDeg
+// of it, does it take the exact angle (atan2), so that no triangle at or above the bound ever
+// ends below it. The bound has a margin of 8 over the polynomial's error (the test measures it).
+constexpr double kApproxErrDeg = 1e-5;
+
 // A cheaper screen, to within kCoarseErrDeg: the polynomial of Abramowitz–Stegun 4.4.47,
 // |error| <= 1.15e-5 rad (6.6e-4 degrees, measured on 2e7 points; the book states 1e-5); the
 // bound used has a margin of 3 over it. Five terms instead of nine: it answers the accept/reject
@@ -92,7 +98,7 @@ struct Mesh {
   const std::vector<uint8_t>& fixed;
   std::vector<uint32_t> starStart, starTri;  // CSR vertex -> triangles
   std::vector<uint32_t> adj;                 // triangle adjacency (see buildAdjacency)
-  std::vector<double> minAngle;              // cached 3D min angle per triangle (degrees)
+  std::vector<double> minAngle;              // cached 3D min angle per triangle (degrees, approximate: kApproxErrDeg)
   // the guard (SurfaceSamples): per triangle a list (head, next) of the points whose planar
   // position it contains, and the largest squared 3D distance from them to the triangle
   const SurfaceSamples* guard = nullptr;
@@ -102,6 +108,10 @@ struct Mesh {
 
   const double* p(uint32_t v) const { return &xy[2 * size_t(v)]; }
   double triMin(uint32_t t) const {
+    const uint32_t* v = &tri[3 * size_t(t)];
+    return minAngleDeg3Approx(pos[v[0]], pos[v[1]], pos[v[2]]);
+  }
+  double triMinExact(uint32_t t) const {
     const uint32_t* v = &tri[3 * size_t(t)];
     return minAngleDeg3(pos[v[0]], pos[v[1]], pos[v[2]]);
   }
@@ -280,13 +290,20 @@ bool tryMove(Mesh& m, uint32_t v, double x, double y, const LiftFn& lift, double
   const uint32_t* s = &m.starTri[m.starStart[v]];
   const size_t n = m.starStart[v + 1] - m.starStart[v];
   const double oldMin = old.min, oldSum = old.sum;
+  // the floor: the bound, or the star's own min when it is below the bound (exactly: an
+  // approximate min just under the bound may be an exact one on it)
+  double floor = oldMin >= bound ? bound : oldMin;
+  if (oldMin < bound && oldMin > bound - kApproxErrDeg) {
+    double exact = 180;
+    for (size_t i = 0; i < n; ++i) exact = std::min(exact, m.triMinExact(s[i]));
+    if (exact >= bound) floor = bound;
+  }
   Vec3 P;
   if (!lift(v, x, y, P)) return false;
   const Vec3 keep = m.pos[v];
   m.pos[v] = P;
-  const double floor = oldMin >= bound ? bound : oldMin;
-  // Most candidates are rejected: decide from the approximate angles where they are sure (each
-  // is within kCoarseErrDeg of its exact value), and take atan2 only for the rest. The exact
+  // Most candidates are rejected: decide from the coarse angles where they are sure (each is
+  // within kCoarseErrDeg of the approximate one), and compute those only for the rest. The
   // test below is the rule; this one only skips work where its answer is known.
   constexpr size_t kBuf = 64;
   Corner corner[kBuf];
@@ -325,13 +342,16 @@ bool tryMove(Mesh& m, uint32_t v, double x, double y, const LiftFn& lift, double
   double newMin = 180, newSum = 0;
   double fresh[kBuf];
   for (size_t i = 0; i < n; ++i) {
-    double a = n <= kBuf ? cornerDeg(corner[i]) : m.triMin(s[i]);  // the same value as triMin
+    double a = n <= kBuf ? cornerDegApprox(corner[i]) : m.triMin(s[i]);  // the same value as triMin
     if (n <= kBuf) fresh[i] = a;
     newMin = std::min(newMin, a);
     newSum += a;
   }
   const bool better = oldMin < bound ? newMin > oldMin + 1e-9 : newSum > oldSum + 1e-9 * n;
   bool kept = newMin >= floor && better;
+  if (kept && floor == bound && newMin < bound + kApproxErrDeg)  // the bound at stake: exactly
+    for (size_t i = 0; i < n && kept; ++i)
+      if ((n <= kBuf ? fresh[i] : m.triMin(s[i])) < bound + kApproxErrDeg) kept = m.triMinExact(s[i]) >= bound;
   if (kept && m.guard) {
     const double ox = m.xy[2 * size_t(v)], oy = m.xy[2 * size_t(v) + 1];
     m.xy[2 * size_t(v)] = x, m.xy[2 * size_t(v) + 1] = y;
@@ -454,7 +474,7 @@ inline void relink(Mesh& m, uint32_t t, uint32_t from, uint32_t to) {
 // refuse it again. Only triangles with a vertex in `region` can have such an edge: they are
 // marked first (from the stars), and a flip marks its second triangle, which it may give one.
 // Pre: m.adj and the stars are current.
-size_t flipPass(Mesh& m, std::vector<uint8_t>& touched, const std::vector<uint8_t>& region) {
+size_t flipPass(Mesh& m, std::vector<uint8_t>& touched, const std::vector<uint8_t>& region, double bound) {
   const uint32_t nt = uint32_t(m.tri.size() / 3);
   std::vector<uint8_t> near(nt, 0);
   for (size_t v = 0; v + 1 < m.starStart.size(); ++v)
@@ -474,9 +494,8 @@ size_t flipPass(Mesh& m, std::vector<uint8_t>& touched, const std::vector<uint8_
       if (v1[(d + 1) % 3] != x) continue;                  // not a consistently oriented pair
       const uint32_t c1 = v1[(d + 2) % 3];
       if (c0 == c1) continue;
-      // new triangles (c0, x, c1) and (c1, y, c0). Most edges do not flip: the approximate
-      // angles are sure of that for nearly all, so they are asked first, and atan2 only where
-      // they are not
+      // new triangles (c0, x, c1) and (c1, y, c0). Most edges do not flip: the coarse angles
+      // are sure of that for nearly all, so they are asked first
       const double before = std::min(m.minAngle[t0], m.minAngle[t1]);
       const Corner k0 = smallestCorner(m.pos[c0], m.pos[x], m.pos[c1]);
       if (cornerDegCoarse(k0) + kCoarseErrDeg <= before + 1e-6) continue;
@@ -485,8 +504,13 @@ size_t flipPass(Mesh& m, std::vector<uint8_t>& touched, const std::vector<uint8_
       // both must be strictly positive in the plane
       const double l2 = sq(m.p(c0)[0] - m.p(c1)[0]) + sq(m.p(c0)[1] - m.p(c1)[1]);
       if (!(orient2d(m.p(c0), m.p(x), m.p(c1)) > 1e-6 * l2) || !(orient2d(m.p(c1), m.p(y), m.p(c0)) > 1e-6 * l2)) continue;
-      const double n0 = cornerDeg(k0), n1 = cornerDeg(k1);
-      if (!(std::min(n0, n1) > before + 1e-6) || !guardAcceptsFlip(m, t0, t1, c0, x, c1, y)) continue;
+      const double n0 = cornerDegApprox(k0), n1 = cornerDegApprox(k1);
+      if (!(std::min(n0, n1) > before + 1e-6)) continue;
+      // near the bound, the rule on the exact angles (then no triangle at or above it goes below)
+      if (std::min(n0, n1) < bound + kApproxErrDeg && before > bound - kApproxErrDeg &&
+          !(std::min(cornerDeg(k0), cornerDeg(k1)) > std::min(m.triMinExact(t0), m.triMinExact(t1)) + 1e-6))
+        continue;
+      if (!guardAcceptsFlip(m, t0, t1, c0, x, c1, y)) continue;
       // the quad's outer neighbours: (y, c0) and (c0, x) of t0, (x, c1) and (c1, y) of t1
       const uint32_t nYC0 = m.adj[3 * size_t(t0) + (c + 1) % 3], nC0X = m.adj[3 * size_t(t0) + (c + 2) % 3];
       const uint32_t nXC1 = m.adj[3 * size_t(t1) + (d + 1) % 3], nC1Y = m.adj[3 * size_t(t1) + (d + 2) % 3];
@@ -618,7 +642,7 @@ OptimizeStats optimizePatch(std::vector<double>& xy, std::vector<uint32_t>& tria
     flips = 0;
     if (!(it > 0 && it + 1 == o.maxIterations)) {
       for (size_t v = 0; v < nv; ++v) changed[v] = active[v] | nextActive[v];
-      flips = flipPass(m, nextActive, changed);
+      flips = flipPass(m, nextActive, changed, o.minAngleDeg);
     }
     st.flips += flips;
     active.swap(nextActive);

@@ -31,7 +31,7 @@ struct OptimizeOptions {
 struct OptimizeStats {
   int iterations = 0;
   size_t moves = 0, flips = 0;
-  double meanMinAngleBefore = 0, meanMinAngleAfter = 0;  //!< degrees, 3D
+  double meanMinAngleBefore = 0, meanMinAngleAfter = 0;  //!< degrees, 3D (minAngleDeg3Approx)
 };
 
 //! Lift a planar point to the surface; false when it is not in the flattened patch. v: the
@@ -62,7 +62,7 @@ struct SurfaceSamples {
 //! and on return what this call leaves. Used only with an `active` list: the caller clears it
 //! when the triangles or positions changed otherwise than at `active` vertices since.
 struct OptimizeCache {
-  std::vector<double> minAngle;  //!< per triangle, its 3D min angle (degrees)
+  std::vector<double> minAngle;  //!< per triangle, its 3D min angle (degrees, minAngleDeg3Approx)
   std::vector<uint32_t> adjacency;  //!< per triangle side, the triangle across it
   std::vector<uint32_t> starStart, starTri;  //!< vertex -> triangles (core/vertex_stars.h); empty when stale
   //! the guard's points per triangle (a list: head per triangle, next per point) and the largest
@@ -78,9 +78,10 @@ OptimizeStats optimizePatch(std::vector<double>& xy, std::vector<uint32_t>& tria
 //! Smallest angle of the 3D triangle (a, b, c), in degrees.
 double minAngleDeg3(const features::Vec3& a, const features::Vec3& b, const features::Vec3& c);
 
-//! minAngleDeg3 without atan2, within 1e-4 degrees of it (a polynomial arctangent); NaN for a
-//! triangle whose smallest corner is degenerate. The optimizer uses it only to skip exact
-//! evaluations whose outcome it already knows.
+//! minAngleDeg3 without atan2, within 1e-4 degrees of it (a polynomial arctangent; measured
+//! within 1.2e-6); NaN for a triangle whose smallest corner is degenerate. The optimizer ranks
+//! and decides its moves and flips by it, and takes minAngleDeg3 where the bound is at stake
+//! (within 1e-5 degrees of it).
 double minAngleDeg3Approx(const features::Vec3& a, const features::Vec3& b, const features::Vec3& c);
 
 }  // namespace conformesh::optimization

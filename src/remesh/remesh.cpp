@@ -922,14 +922,15 @@ std::vector<std::vector<uint8_t>> Pipeline::slideSamples() {
     } else {
       vertexStars(w.triangles, nv, st.start, st.tri);
     }
-    // the patch's latest optimization left these very values (minAngleDeg3 of the same
-    // positions: only optimizations and slides move vertices, and each keeps them current)
+    // the patch's latest optimization left these very values (minAngleDeg3Approx of the same
+    // positions: only optimizations and slides move vertices, and each keeps them current; a
+    // slide stores the exact values of the stars it changed, within 1e-5 degrees of those)
     if (work_[p]->optimizeCache.minAngle.size() == nt) {
       st.minAngle.swap(work_[p]->optimizeCache.minAngle);
     } else {
       st.minAngle.resize(nt);
       for (size_t t = 0; t < nt; ++t)
-        st.minAngle[t] = optimization::minAngleDeg3(pos3(w, w.triangles[3 * t]), pos3(w, w.triangles[3 * t + 1]), pos3(w, w.triangles[3 * t + 2]));
+        st.minAngle[t] = optimization::minAngleDeg3Approx(pos3(w, w.triangles[3 * t]), pos3(w, w.triangles[3 * t + 1]), pos3(w, w.triangles[3 * t + 2]));
     }
     const auto& loop = w.pm.boundaryLoops[0];
     for (uint32_t k = 0; k < loop.size(); ++k) st.loopOfEdge[g_.faceEdges[w.pm.faceInput[loop[k].face]][loop[k].corner]].push_back(k);
