@@ -42,26 +42,18 @@ inline Corner smallestCorner(const Vec3& a, const Vec3& b, const Vec3& c) {
 
 double cornerDeg(const Corner& k) { return ((k.cr == 0 && k.dt == 0) ? 0.0 : dmath::atan2(k.cr, k.dt)) * kRadToDeg; }
 
-// cornerDeg without atan2 (NaN for a degenerate corner): atan(z) = z · atanOverZ(z²) on [0, 1],
-// the other octants by symmetry.
-template <class AtanOverZ>
-double cornerDegBy(const Corner& k, AtanOverZ atanOverZ) {
+// cornerDeg without atan2 (NaN for a degenerate corner): atan(z) = z · P(z²) on [0, 1], the
+// other octants by symmetry; P the polynomial of Abramowitz–Stegun 4.4.49 (Hastings 1955),
+// |error| <= 2e-8 rad (1.2e-6 degrees; optimize.h promises 1e-4).
+double cornerDegApprox(const Corner& k) {
   constexpr double kHalfPi = 1.57079632679489661923, kPi = 3.14159265358979323846;
   const double c = k.cr, d = std::abs(k.dt);
   const bool steep = c > d;
-  const double z = steep ? d / c : c / d;
-  const double p = atanOverZ(z * z);
+  const double z = steep ? d / c : c / d, z2 = z * z;
+  const double p = 1 + z2 * (-0.3333314528 + z2 * (0.1999355085 + z2 * (-0.1420889944 + z2 * (0.1065626393 + z2 * (-0.0752896400 + z2 * (0.0429096138 + z2 * (-0.0161657367 + z2 * 0.0028662257)))))));
   double r = steep ? kHalfPi - z * p : z * p;
   if (k.dt < 0) r = kPi - r;
   return r * kRadToDeg;
-}
-
-// For minAngleDeg3Approx: the polynomial of Abramowitz–Stegun 4.4.49 (Hastings 1955), |error| <=
-// 2e-8 rad (1.2e-6 degrees; optimize.h promises 1e-4).
-double cornerDegApprox(const Corner& k) {
-  return cornerDegBy(k, [](double z2) {
-    return 1 + z2 * (-0.3333314528 + z2 * (0.1999355085 + z2 * (-0.1420889944 + z2 * (0.1065626393 + z2 * (-0.0752896400 + z2 * (0.0429096138 + z2 * (-0.0161657367 + z2 * 0.0028662257)))))));
-  });
 }
 
 // The optimizer works with cornerDegApprox's values (a tenth of atan2's cost): the moves and
@@ -69,16 +61,6 @@ double cornerDegApprox(const Corner& k) {
 // of it, does it take the exact angle (atan2), so that no triangle at or above the bound ever
 // ends below it. The bound has a margin of 8 over the polynomial's error (the test measures it).
 constexpr double kApproxErrDeg = 1e-5;
-
-// A cheaper screen, to within kCoarseErrDeg: the polynomial of Abramowitz–Stegun 4.4.47,
-// |error| <= 1.15e-5 rad (6.6e-4 degrees, measured on 2e7 points; the book states 1e-5); the
-// bound used has a margin of 3 over it. Five terms instead of nine: it answers the accept/reject
-// screens of the moves and flips, where a candidate within the bound of the decision goes on to
-// atan2 anyway.
-constexpr double kCoarseErrDeg = 2e-3;
-double cornerDegCoarse(const Corner& k) {
-  return cornerDegBy(k, [](double z2) { return 0.9998660 + z2 * (-0.3302995 + z2 * (0.1801410 + z2 * (-0.0851330 + z2 * 0.0208351))); });
-}
 
 // Circumcenter of a planar triangle; false when it is degenerate.
 bool circumcenter(const double* a, const double* b, const double* c, double out[2]) {
@@ -105,6 +87,7 @@ struct Mesh {
   std::vector<uint32_t> head, next;
   std::vector<double> err;
   std::vector<uint32_t> pending;  // rebucket's scratch list (kept to spare an allocation per move)
+  std::vector<double> fresh;      // tryMove's: the star's new min angles
 
   const double* p(uint32_t v) const { return &xy[2 * size_t(v)]; }
   double triMin(uint32_t t) const {
@@ -302,56 +285,32 @@ bool tryMove(Mesh& m, uint32_t v, double x, double y, const LiftFn& lift, double
   if (!lift(v, x, y, P)) return false;
   const Vec3 keep = m.pos[v];
   m.pos[v] = P;
-  // Most candidates are rejected: decide from the coarse angles where they are sure (each is
-  // within kCoarseErrDeg of the approximate one), and compute those only for the rest. The
-  // test below is the rule; this one only skips work where its answer is known.
-  constexpr size_t kBuf = 64;
-  Corner corner[kBuf];
-  if (n <= kBuf) {
-    double aMin = 180, aSum = 0;
-    for (size_t i = 0; i < n; ++i) {
-      const uint32_t* t = &m.tri[3 * size_t(s[i])];
-      corner[i] = smallestCorner(m.pos[t[0]], m.pos[t[1]], m.pos[t[2]]);
-      const double a = cornerDegCoarse(corner[i]);
-      aMin = std::min(aMin, a);
-      aSum += a;
-    }
-    const double e = kCoarseErrDeg;
-    const bool surelyRejected = aMin + e < floor ||
-                                (oldMin < bound ? aMin + e <= oldMin + 1e-9 : aSum + e * double(n) + 1e-9 <= oldSum + 1e-9 * n);
-    if (surelyRejected) {
-      m.pos[v] = keep;
-      return false;
-    }
-  }
-  // no star triangle may be inverted or a sliver in the plane: strictly positive, relative to
-  // the triangle's size (checked after the angles, which reject far more candidates)
-  const double q[2] = {x, y};
+  // the star's new min angles decide most candidates (most are refused)
+  if (m.fresh.size() < n) m.fresh.resize(n);
+  double* fresh = m.fresh.data();
+  double newMin = 180, newSum = 0;
   for (size_t i = 0; i < n; ++i) {
+    fresh[i] = m.triMin(s[i]);
+    newMin = std::min(newMin, fresh[i]);
+    newSum += fresh[i];
+  }
+  const bool better = oldMin < bound ? newMin > oldMin + 1e-9 : newSum > oldSum + 1e-9 * n;
+  bool kept = newMin >= floor && better;
+  // no star triangle may be inverted or a sliver in the plane: strictly positive, relative to
+  // the triangle's size (checked after the angles, which refuse far more candidates)
+  const double q[2] = {x, y};
+  for (size_t i = 0; i < n && kept; ++i) {
     const uint32_t* t = &m.tri[3 * size_t(s[i])];
     const double* c[3];
     for (int k = 0; k < 3; ++k) c[k] = t[k] == v ? q : m.p(t[k]);
     const double l2 = std::max({sq(c[1][0] - c[0][0]) + sq(c[1][1] - c[0][1]),
                                 sq(c[2][0] - c[1][0]) + sq(c[2][1] - c[1][1]),
                                 sq(c[0][0] - c[2][0]) + sq(c[0][1] - c[2][1])});
-    if (!(orient2d(c[0], c[1], c[2]) > 1e-6 * l2)) {
-      m.pos[v] = keep;
-      return false;
-    }
+    kept = orient2d(c[0], c[1], c[2]) > 1e-6 * l2;
   }
-  double newMin = 180, newSum = 0;
-  double fresh[kBuf];
-  for (size_t i = 0; i < n; ++i) {
-    double a = n <= kBuf ? cornerDegApprox(corner[i]) : m.triMin(s[i]);  // the same value as triMin
-    if (n <= kBuf) fresh[i] = a;
-    newMin = std::min(newMin, a);
-    newSum += a;
-  }
-  const bool better = oldMin < bound ? newMin > oldMin + 1e-9 : newSum > oldSum + 1e-9 * n;
-  bool kept = newMin >= floor && better;
   if (kept && floor == bound && newMin < bound + kApproxErrDeg)  // the bound at stake: exactly
     for (size_t i = 0; i < n && kept; ++i)
-      if ((n <= kBuf ? fresh[i] : m.triMin(s[i])) < bound + kApproxErrDeg) kept = m.triMinExact(s[i]) >= bound;
+      if (fresh[i] < bound + kApproxErrDeg) kept = m.triMinExact(s[i]) >= bound;
   if (kept && m.guard) {
     const double ox = m.xy[2 * size_t(v)], oy = m.xy[2 * size_t(v) + 1];
     m.xy[2 * size_t(v)] = x, m.xy[2 * size_t(v) + 1] = y;
@@ -364,7 +323,7 @@ bool tryMove(Mesh& m, uint32_t v, double x, double y, const LiftFn& lift, double
   }
   m.xy[2 * size_t(v)] = x;
   m.xy[2 * size_t(v) + 1] = y;
-  for (size_t i = 0; i < n; ++i) m.minAngle[s[i]] = n <= kBuf ? fresh[i] : m.triMin(s[i]);
+  for (size_t i = 0; i < n; ++i) m.minAngle[s[i]] = fresh[i];
   rebucket(m, s, n);
   old = {newMin, newSum};
   return true;
@@ -494,18 +453,18 @@ size_t flipPass(Mesh& m, std::vector<uint8_t>& touched, const std::vector<uint8_
       if (v1[(d + 1) % 3] != x) continue;                  // not a consistently oriented pair
       const uint32_t c1 = v1[(d + 2) % 3];
       if (c0 == c1) continue;
-      // new triangles (c0, x, c1) and (c1, y, c0). Most edges do not flip: the coarse angles
-      // are sure of that for nearly all, so they are asked first
+      // new triangles (c0, x, c1) and (c1, y, c0). Most edges do not flip: the first new angle
+      // decides that for nearly all, so it is asked first
       const double before = std::min(m.minAngle[t0], m.minAngle[t1]);
       const Corner k0 = smallestCorner(m.pos[c0], m.pos[x], m.pos[c1]);
-      if (cornerDegCoarse(k0) + kCoarseErrDeg <= before + 1e-6) continue;
+      const double n0 = cornerDegApprox(k0);
+      if (!(n0 > before + 1e-6)) continue;
       const Corner k1 = smallestCorner(m.pos[c1], m.pos[y], m.pos[c0]);
-      if (cornerDegCoarse(k1) + kCoarseErrDeg <= before + 1e-6) continue;
+      const double n1 = cornerDegApprox(k1);
+      if (!(n1 > before + 1e-6)) continue;
       // both must be strictly positive in the plane
       const double l2 = sq(m.p(c0)[0] - m.p(c1)[0]) + sq(m.p(c0)[1] - m.p(c1)[1]);
       if (!(orient2d(m.p(c0), m.p(x), m.p(c1)) > 1e-6 * l2) || !(orient2d(m.p(c1), m.p(y), m.p(c0)) > 1e-6 * l2)) continue;
-      const double n0 = cornerDegApprox(k0), n1 = cornerDegApprox(k1);
-      if (!(std::min(n0, n1) > before + 1e-6)) continue;
       // near the bound, the rule on the exact angles (then no triangle at or above it goes below)
       if (std::min(n0, n1) < bound + kApproxErrDeg && before > bound - kApproxErrDeg &&
           !(std::min(cornerDeg(k0), cornerDeg(k1)) > std::min(m.triMinExact(t0), m.triMinExact(t1)) + 1e-6))
@@ -551,7 +510,7 @@ double minAngleDeg3Approx(const Vec3& a, const Vec3& b, const Vec3& c) { return 
 OptimizeStats optimizePatch(std::vector<double>& xy, std::vector<uint32_t>& triangles, std::vector<Vec3>& pos,
                             const std::vector<uint8_t>& fixed, const LiftFn& lift, const OptimizeOptions& o,
                             const std::vector<uint8_t>& active0, const SurfaceSamples& guard, OptimizeCache* cache) {
-  Mesh m{xy, triangles, pos, fixed, {}, {}, {}, {}, nullptr, {}, {}, {}, {}};
+  Mesh m{xy, triangles, pos, fixed, {}, {}, {}, {}, nullptr, {}, {}, {}, {}, {}};
   OptimizeStats st;
   const size_t nt = triangles.size() / 3;
   // the previous call's min angles stand where no vertex moved since (the same positions give
