@@ -138,9 +138,10 @@ void bucketGuard(Mesh& m, const std::vector<uint32_t>& tris, const std::vector<u
   // output mesh), about one point per cell; each triangle then tests the points of the cells its
   // box covers (a point in a triangle is in a cell of its box: the cells are monotone in x, y)
   const int g = std::max(1, std::min(4096, int(std::sqrt(double(pts.size())))));
-  auto cell = [&](double x, int d) {
-    const double f = hi[d] > lo[d] ? (x - lo[d]) / (hi[d] - lo[d]) : 0.0;
-    return std::clamp(int(f * g), 0, g - 1);
+  const double scale[2] = {hi[0] > lo[0] ? g / (hi[0] - lo[0]) : 0.0, hi[1] > lo[1] ? g / (hi[1] - lo[1]) : 0.0};
+  auto cell = [&](double x, int d) {  // clamped before the conversion (corners far off the points' box; NaN -> 0)
+    const double f = (x - lo[d]) * scale[d];
+    return f > 0 ? (f < g - 1 ? int(f) : g - 1) : 0;
   };
   std::vector<uint32_t> start(size_t(g) * g + 1, 0), items;
   auto cellOf = [&](uint32_t k) {
@@ -158,12 +159,21 @@ void bucketGuard(Mesh& m, const std::vector<uint32_t>& tris, const std::vector<u
       if (const size_t c = cellOf(k); c != SIZE_MAX) items[fill[c]++] = k;
   }
   std::vector<uint8_t> placed(start.back(), 0);  // per item
+  // the cells of the triangles' corners, once per vertex (cell is monotone: the cells of a
+  // triangle's box are those between its corners' cells)
+  std::vector<int> vcell(m.xy.size(), -1);
+  auto vertexCell = [&](uint32_t v, int d) {
+    int& c = vcell[2 * size_t(v) + d];
+    if (c < 0) c = cell(m.xy[2 * size_t(v) + d], d);
+    return c;
+  };
   for (const uint32_t t : tris) {
     const uint32_t* v = &m.tri[3 * size_t(t)];
     int r[4];  // i0, j0, i1, j1
     for (int d = 0; d < 2; ++d) {
-      r[d] = cell(std::min({m.p(v[0])[d], m.p(v[1])[d], m.p(v[2])[d]}), d);
-      r[2 + d] = cell(std::max({m.p(v[0])[d], m.p(v[1])[d], m.p(v[2])[d]}), d);
+      const int c0 = vertexCell(v[0], d), c1 = vertexCell(v[1], d), c2 = vertexCell(v[2], d);
+      r[d] = std::min({c0, c1, c2});
+      r[2 + d] = std::max({c0, c1, c2});
     }
     for (int j = r[1]; j <= r[3]; ++j)
       for (int i = r[0]; i <= r[2]; ++i) {
