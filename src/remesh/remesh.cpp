@@ -904,7 +904,7 @@ std::vector<std::vector<uint8_t>> Pipeline::slideSamples() {
   struct Star {
     std::vector<uint32_t> start, tri;
     std::vector<double> minAngle;
-    std::unordered_map<uint32_t, std::vector<uint32_t>> loopOfEdge;
+    std::vector<std::pair<uint32_t, uint32_t>> loopOfEdge;  // (input edge, loop halfedge), sorted
   };
   std::vector<Star> stars(work_.size());
   std::vector<std::vector<Hold>> holds(nS);
@@ -933,7 +933,8 @@ std::vector<std::vector<uint8_t>> Pipeline::slideSamples() {
         st.minAngle[t] = optimization::minAngleDeg3Approx(pos3(w, w.triangles[3 * t]), pos3(w, w.triangles[3 * t + 1]), pos3(w, w.triangles[3 * t + 2]));
     }
     const auto& loop = w.pm.boundaryLoops[0];
-    for (uint32_t k = 0; k < loop.size(); ++k) st.loopOfEdge[g_.faceEdges[w.pm.faceInput[loop[k].face]][loop[k].corner]].push_back(k);
+    for (uint32_t k = 0; k < loop.size(); ++k) st.loopOfEdge.push_back({g_.faceEdges[w.pm.faceInput[loop[k].face]][loop[k].corner], k});
+    std::sort(st.loopOfEdge.begin(), st.loopOfEdge.end());
     for (uint32_t v = 0; v < nv; ++v)
       if (w.localToGlobal[v] != kNone) holds[w.localToGlobal[v]].push_back({p, v});
   }
@@ -949,7 +950,7 @@ std::vector<std::vector<uint8_t>> Pipeline::slideSamples() {
   constexpr int kPasses = 2;  // hard cap
   std::vector<double> fresh;
   std::vector<std::array<double, 2>> newXY;
-  std::vector<uint32_t> loopK;
+  std::vector<uint32_t> loopK, nb;
   // a sample is tried again in the next pass when a sample of its star slid
   std::vector<uint8_t> activeS(nS, 1), nextS(nS, 0);
   for (int pass = 0; pass < kPasses; ++pass) {
@@ -972,7 +973,7 @@ std::vector<std::vector<uint8_t>> Pipeline::slideSamples() {
       const Hold h0 = holds[s][0];
       const PatchWork& w0 = *work_[h0.p];
       const Star& st0 = stars[h0.p];
-      std::vector<uint32_t> nb;
+      nb.clear();
       for (uint32_t i = st0.start[h0.v]; i < st0.start[h0.v + 1]; ++i) {
         const uint32_t* t = &w0.triangles[3 * size_t(st0.tri[i])];
         for (int c = 0; c < 3; ++c)
@@ -1031,10 +1032,12 @@ std::vector<std::vector<uint8_t>> Pipeline::slideSamples() {
       loopK.assign(holds[s].size(), kNone);
       for (size_t i = 0; i < holds[s].size(); ++i) {
         const PatchWork& w = *work_[holds[s][i].p];
-        const auto it = stars[holds[s][i].p].loopOfEdge.find(e);
-        if (it == stars[holds[s][i].p].loopOfEdge.end()) continue;
+        const auto& loe = stars[holds[s][i].p].loopOfEdge;
+        const auto range = std::equal_range(loe.begin(), loe.end(), std::pair<uint32_t, uint32_t>{e, 0},
+                                            [](const auto& a, const auto& b) { return a.first < b.first; });
         double best = INFINITY;
-        for (uint32_t k : it->second) {
+        for (auto it = range.first; it != range.second; ++it) {
+          const uint32_t k = it->second;
           double q[2];
           planarAt(w, k, e, smp.t, q);
           const double d = dmath::hypot(q[0] - w.planarPoints[2 * holds[s][i].v], q[1] - w.planarPoints[2 * holds[s][i].v + 1]);
