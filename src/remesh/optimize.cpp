@@ -440,28 +440,30 @@ inline void relink(Mesh& m, uint32_t t, uint32_t from, uint32_t to) {
 // the smaller 3D min angle of its two triangles gets larger. Returns the number of flips.
 // Edges are visited by triangle (each from its triangle of smaller index), only those with an
 // end in `region`: an edge whose quad did not change since the last pass refused it would
-// refuse it again. Only triangles with a vertex in `region` can have such an edge: they are
-// marked first (from the stars), and a flip marks its second triangle, which it may give one.
+// refuse it again. Only triangles with a vertex in `region` can have such an edge, and the
+// second triangle of a flip, which the flip may give one (it is marked).
 // Pre: m.adj and the stars are current.
 size_t flipPass(Mesh& m, std::vector<uint8_t>& touched, const std::vector<uint8_t>& region, double bound) {
   const uint32_t nt = uint32_t(m.tri.size() / 3);
-  std::vector<uint8_t> near(nt, 0);
-  for (size_t v = 0; v + 1 < m.starStart.size(); ++v)
-    if (region[v])
-      for (uint32_t k = m.starStart[v]; k < m.starStart[v + 1]; ++k) near[m.starTri[k]] = 1;
+  std::vector<uint8_t> near(nt, 0);  // the second triangles of this pass's flips
   size_t flips = 0;
+  static constexpr int kNext[3] = {1, 2, 0}, kPrev[3] = {2, 0, 1};
   for (uint32_t t0 = 0; t0 < nt; ++t0) {
-    if (!near[t0]) continue;
+    {
+      const uint32_t* w = &m.tri[3 * size_t(t0)];
+      if (!(near[t0] || region[w[0]] || region[w[1]] || region[w[2]])) continue;
+    }
     for (int c = 0; c < 3; ++c) {
-      uint32_t* v0 = &m.tri[3 * size_t(t0)];
       const uint32_t t1 = m.adj[3 * size_t(t0) + c];
-      const uint32_t x = v0[c], y = v0[(c + 1) % 3], c0 = v0[(c + 2) % 3];
-      if (t1 == kNoTri || t1 < t0 || !(region[x] || region[y])) continue;
+      if (t1 == kNoTri || t1 < t0) continue;
+      uint32_t* v0 = &m.tri[3 * size_t(t0)];
+      const uint32_t x = v0[c], y = v0[kNext[c]], c0 = v0[kPrev[c]];
+      if (!(region[x] || region[y])) continue;
       // t0 = (x, y, c0) counter-clockwise; t1 holds the edge as y -> x
       uint32_t* v1 = &m.tri[3 * size_t(t1)];
       const int d = v1[0] == y ? 0 : v1[1] == y ? 1 : 2;  // v1[d] = y, v1[d+1] = x
-      if (v1[(d + 1) % 3] != x) continue;                  // not a consistently oriented pair
-      const uint32_t c1 = v1[(d + 2) % 3];
+      if (v1[kNext[d]] != x) continue;                     // not a consistently oriented pair
+      const uint32_t c1 = v1[kPrev[d]];
       if (c0 == c1) continue;
       // new triangles (c0, x, c1) and (c1, y, c0). Most edges do not flip: the first new angle
       // decides that for nearly all, so it is asked first
@@ -481,8 +483,8 @@ size_t flipPass(Mesh& m, std::vector<uint8_t>& touched, const std::vector<uint8_
         continue;
       if (!guardAcceptsFlip(m, t0, t1, c0, x, c1, y)) continue;
       // the quad's outer neighbours: (y, c0) and (c0, x) of t0, (x, c1) and (c1, y) of t1
-      const uint32_t nYC0 = m.adj[3 * size_t(t0) + (c + 1) % 3], nC0X = m.adj[3 * size_t(t0) + (c + 2) % 3];
-      const uint32_t nXC1 = m.adj[3 * size_t(t1) + (d + 1) % 3], nC1Y = m.adj[3 * size_t(t1) + (d + 2) % 3];
+      const uint32_t nYC0 = m.adj[3 * size_t(t0) + kNext[c]], nC0X = m.adj[3 * size_t(t0) + kPrev[c]];
+      const uint32_t nXC1 = m.adj[3 * size_t(t1) + kNext[d]], nC1Y = m.adj[3 * size_t(t1) + kPrev[d]];
       m.minAngle[t0] = n0;
       m.minAngle[t1] = n1;
       v0[0] = c0, v0[1] = x, v0[2] = c1;
