@@ -75,6 +75,11 @@ double cornerDegApprox(const Corner& k) {
 // ends below it. The bound has a margin of 8 over the polynomial's error (the test measures it).
 constexpr double kApproxErrDeg = 1e-5;
 
+// The corner of triangle t (3 vertex indices) at vertex v, which it has, without a branch (which
+// corner it is follows no pattern); and the corners after and before corner c.
+inline int cornerOf(const uint32_t* t, uint32_t v) { return int(t[1] == v) + 2 * int(t[2] == v); }
+constexpr int kNext[3] = {1, 2, 0}, kPrev[3] = {2, 0, 1};
+
 // Circumcenter of a planar triangle; false when it is degenerate.
 bool circumcenter(const double* a, const double* b, const double* c, double out[2]) {
   const double bx = b[0] - a[0], by = b[1] - a[1], cx = c[0] - a[0], cy = c[1] - a[1];
@@ -380,8 +385,8 @@ bool equilateralTarget(const Mesh& m, uint32_t v, double out[2]) {
   int n = 0;
   for (uint32_t k = m.starStart[v]; k < m.starStart[v + 1]; ++k) {
     const uint32_t* t = &m.tri[3 * size_t(m.starTri[k])];
-    int c = t[0] == v ? 0 : t[1] == v ? 1 : 2;
-    const double *a = m.p(t[(c + 1) % 3]), *b = m.p(t[(c + 2) % 3]);
+    const int c = cornerOf(t, v);
+    const double *a = m.p(t[kNext[c]]), *b = m.p(t[kPrev[c]]);
     const double dx = b[0] - a[0], dy = b[1] - a[1];
     constexpr double h = 0.86602540378443864676;
     sx += 0.5 * (a[0] + b[0]) - h * dy;
@@ -427,8 +432,8 @@ void buildAdjacency(Mesh& m) {
     for (uint32_t i = m.starStart[a]; i < m.starStart[a + 1]; ++i) {
       const uint32_t t = m.starTri[i];
       const uint32_t* w = &m.tri[3 * size_t(t)];
-      const int k = w[0] == a ? 0 : (w[1] == a ? 1 : 2);
-      star.push_back({t, w[(k + 1) % 3], w[(k + 2) % 3], k});
+      const int k = cornerOf(w, a);
+      star.push_back({t, w[kNext[k]], w[kPrev[k]], k});
     }
     for (const Corner3& c : star)
       for (const Corner3& d : star)
@@ -460,7 +465,6 @@ size_t flipPass(Mesh& m, std::vector<uint8_t>& touched, const std::vector<uint8_
   const uint32_t nt = uint32_t(m.tri.size() / 3);
   std::vector<uint8_t> near(nt, 0);  // the second triangles of this pass's flips
   size_t flips = 0;
-  static constexpr int kNext[3] = {1, 2, 0}, kPrev[3] = {2, 0, 1};
   for (uint32_t t0 = 0; t0 < nt; ++t0) {
     {
       const uint32_t* w = &m.tri[3 * size_t(t0)];
@@ -474,7 +478,7 @@ size_t flipPass(Mesh& m, std::vector<uint8_t>& touched, const std::vector<uint8_
       if (!(region[x] || region[y])) continue;
       // t0 = (x, y, c0) counter-clockwise; t1 holds the edge as y -> x
       uint32_t* v1 = &m.tri[3 * size_t(t1)];
-      const int d = v1[0] == y ? 0 : v1[1] == y ? 1 : 2;  // v1[d] = y, v1[d+1] = x
+      const int d = cornerOf(v1, y);  // v1[d] = y, v1[d+1] = x
       if (v1[kNext[d]] != x) continue;                     // not a consistently oriented pair
       const uint32_t c1 = v1[kPrev[d]];
       if (c0 == c1) continue;
