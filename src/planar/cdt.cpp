@@ -7,6 +7,7 @@
 #include <string>
 
 #include "core/hilbert.h"
+#include "core/triangle_corner.h"
 #include "planar/cdt_state.h"
 
 namespace conformesh::planar {
@@ -156,7 +157,7 @@ class CdtBuilder {
       uint32_t t = T_.vtri[a], start = t, found = kNone, through = kNone;
       for (size_t g2 = 0; g2 < T_.tris.size() + 4; ++g2) {
         const Tri& Tt = T_.tris[t];
-        uint32_t i = Tt.v[0] == a ? 0 : (Tt.v[1] == a ? 1 : 2);
+        const uint32_t i = uint32_t(cornerOf(Tt.v, a));
         if (!T_.isGhost(t)) {
           uint32_t x = Tt.v[nxt(i)], y = Tt.v[prv(i)];
           double o1 = orient2d(pa, T_.pt(x), pb), o2 = orient2d(pa, T_.pt(y), pb);

@@ -5,6 +5,7 @@
 #include <cmath>
 
 #include "core/status.h"
+#include "core/triangle_corner.h"
 
 namespace conformesh::planar {
 
@@ -194,7 +195,7 @@ uint32_t Triangulation::findEdge(uint32_t u, uint32_t v) const {
   const uint32_t start = t;
   for (size_t guard = 0; guard < tris.size() + 4; ++guard) {
     const Tri& T = tris[t];
-    uint32_t i = T.v[0] == u ? 0 : (T.v[1] == u ? 1 : 2);
+    const uint32_t i = uint32_t(cornerOf(T.v, u));
     if (T.v[nxt(i)] == v) return mkH(t, prv(i));
     t = hTri(T.n[nxt(i)]);
     if (t == start) return kNone;

@@ -8,6 +8,7 @@
 #include "planar/predicates.h"
 #include "quality/aabb_tree.h"
 #include "core/detmath.h"
+#include "core/triangle_corner.h"
 #include "core/vertex_stars.h"
 
 namespace conformesh::optimization {
@@ -63,9 +64,7 @@ double cornerDegApprox(const Corner& k) {
 // ends below it. The bound has a margin of 8 over the polynomial's error (the test measures it).
 constexpr double kApproxErrDeg = 1e-5;
 
-// The corner of triangle t (3 vertex indices) at vertex v, which it has, without a branch (which
-// corner it is follows no pattern); and the corners after and before corner c.
-inline int cornerOf(const uint32_t* t, uint32_t v) { return int(t[1] == v) + 2 * int(t[2] == v); }
+// The corners after and before corner c.
 constexpr int kNext[3] = {1, 2, 0}, kPrev[3] = {2, 0, 1};
 
 // Circumcenter of a planar triangle; false when it is degenerate.

@@ -5,6 +5,7 @@
 #include <utility>
 
 #include "core/detmath.h"
+#include "core/triangle_corner.h"
 #include "core/vertex_stars.h"
 #include "quality/aabb_tree.h"
 #include "quality/metrics.h"
@@ -157,7 +158,7 @@ class Repairer {
   // The two other corners of output triangle t, in order after v.
   std::pair<Vec3, Vec3> rim(uint32_t t, uint32_t v) const {
     const uint32_t* c = &out_.triangles[3 * size_t(t)];
-    const int k = c[0] == v ? 0 : c[1] == v ? 1 : 2;
+    const int k = cornerOf(c, v);
     return {at(out_, c[(k + 1) % 3]), at(out_, c[(k + 2) % 3])};
   }
   // Largest distance to the input from the centroid of triangle (p, a, b) and the midpoints of
