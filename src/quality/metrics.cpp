@@ -32,51 +32,6 @@ bool triangleValid(const MeshBuffers& m, size_t f) {
   return t[0] < n && t[1] < n && t[2] < n;
 }
 
-//! Smallest and largest corner angle (radians, each atan2(|u×v|, u·v) of the corner's sides) of
-//! triangle f; false when degenerate (repeated vertex, zero area, a non-finite angle). One atan2
-//! fewer than all three angles when the corner cosines tell them apart: a cosine computed as
-//! u·v / (|u||v|) is within a few ulp of the exact one, and the atan2 form within a few 1e-16 rad of the exact
-//! angle, so cosines more than 1e-9 apart order the computed angles as they order the exact ones
-//! (|Δcos| ≤ |Δangle|); otherwise all three are computed.
-bool minMaxAngle(const MeshBuffers& m, size_t f, double& mn, double& mx) {
-  if (!triangleValid(m, f)) return false;
-  const uint32_t* t = &m.triangles[3 * f];
-  if (t[0] == t[1] || t[1] == t[2] || t[2] == t[0]) return false;
-  const Vec3 p[3] = {vertex(m, t[0]), vertex(m, t[1]), vertex(m, t[2])};
-  Vec3 u[3], v[3];
-  double cr[3], d[3], c[3];
-  bool normal = true;  // side lengths far from under- and overflow: the cosines are accurate
-  for (int k = 0; k < 3; ++k) {
-    u[k] = sub(p[(k + 1) % 3], p[k]);
-    v[k] = sub(p[(k + 2) % 3], p[k]);
-    cr[k] = norm(cross(u[k], v[k]));
-    d[k] = dot(u[k], v[k]);
-    const double uu = dot(u[k], u[k]), vv = dot(v[k], v[k]);
-    normal = normal && uu >= 1e-200 && uu <= 1e200 && vv >= 1e-200 && vv <= 1e200;
-    c[k] = d[k] / (std::sqrt(uu) * std::sqrt(vv));
-  }
-  if (!(cr[0] > 0)) return false;
-  // i0: the largest cosine (smallest angle), i2: the smallest cosine, i1 the other
-  int i0 = 0, i2 = 0;
-  for (int k = 1; k < 3; ++k) {
-    if (c[k] > c[i0]) i0 = k;
-    if (c[k] < c[i2]) i2 = k;
-  }
-  const int i1 = 3 - i0 - i2;
-  constexpr double kApart = 1e-9;
-  if (normal && i0 != i2 && c[i0] - c[i1] > kApart && c[i1] - c[i2] > kApart && std::isfinite(cr[i1]) && std::isfinite(d[i1])) {
-    mn = dmath::atan2(cr[i0], d[i0]);
-    mx = dmath::atan2(cr[i2], d[i2]);
-    return std::isfinite(mn) && std::isfinite(mx);
-  }
-  double ang[3];
-  for (int k = 0; k < 3; ++k) ang[k] = dmath::atan2(cr[k], d[k]);
-  if (!(std::isfinite(ang[0]) && std::isfinite(ang[1]) && std::isfinite(ang[2]))) return false;
-  mn = std::min({ang[0], ang[1], ang[2]});
-  mx = std::max({ang[0], ang[1], ang[2]});
-  return true;
-}
-
 //! Undirected edge with the face it came from and the corner opposite to it.
 struct EdgeRef {
   uint32_t a, b;  // a < b
@@ -252,6 +207,46 @@ void oneSided(const std::vector<Vec3>& pts, const TriangleMeshDistance& target, 
 }
 
 }  // namespace
+
+bool minMaxAngle(const MeshBuffers& m, size_t f, double& mn, double& mx) {
+  if (!triangleValid(m, f)) return false;
+  const uint32_t* t = &m.triangles[3 * f];
+  if (t[0] == t[1] || t[1] == t[2] || t[2] == t[0]) return false;
+  const Vec3 p[3] = {vertex(m, t[0]), vertex(m, t[1]), vertex(m, t[2])};
+  Vec3 u[3], v[3];
+  double cr[3], d[3], c[3];
+  bool normal = true;  // side lengths far from under- and overflow: the cosines are accurate
+  for (int k = 0; k < 3; ++k) {
+    u[k] = sub(p[(k + 1) % 3], p[k]);
+    v[k] = sub(p[(k + 2) % 3], p[k]);
+    cr[k] = norm(cross(u[k], v[k]));
+    d[k] = dot(u[k], v[k]);
+    const double uu = dot(u[k], u[k]), vv = dot(v[k], v[k]);
+    normal = normal && uu >= 1e-200 && uu <= 1e200 && vv >= 1e-200 && vv <= 1e200;
+    c[k] = d[k] / (std::sqrt(uu) * std::sqrt(vv));
+  }
+  if (!(cr[0] > 0)) return false;
+  // i0: the largest cosine (smallest angle), i2: the smallest cosine, i1 the other
+  int i0 = 0, i2 = 0;
+  for (int k = 1; k < 3; ++k) {
+    if (c[k] > c[i0]) i0 = k;
+    if (c[k] < c[i2]) i2 = k;
+  }
+  const int i1 = 3 - i0 - i2;
+  constexpr double kApart = 1e-9;
+  if (normal && i0 != i2 && c[i0] - c[i1] > kApart && c[i1] - c[i2] > kApart && std::isfinite(cr[i1]) && std::isfinite(d[i1])) {
+    mn = dmath::atan2(cr[i0], d[i0]);
+    mx = dmath::atan2(cr[i2], d[i2]);
+    return std::isfinite(mn) && std::isfinite(mx);
+  }
+  double ang[3];
+  for (int k = 0; k < 3; ++k) ang[k] = dmath::atan2(cr[k], d[k]);
+  if (!(std::isfinite(ang[0]) && std::isfinite(ang[1]) && std::isfinite(ang[2]))) return false;
+  mn = std::min({ang[0], ang[1], ang[2]});
+  mx = std::max({ang[0], ang[1], ang[2]});
+  return true;
+}
+
 
 AngleStats angleStats(const MeshBuffers& mesh, std::vector<double>* triangleMinAngles) {
   AngleStats s;

@@ -31,6 +31,15 @@ struct AngleStats {
   size_t minAngleHistogram[13] = {};
 };
 
+//! Smallest and largest corner angle (radians, each atan2(|u×v|, u·v) of the corner's sides) of
+//! triangle f; false when degenerate (an index out of range, a repeated vertex, zero area, a
+//! non-finite angle). One atan2 fewer than all three angles when the corner cosines tell them
+//! apart: a cosine computed as u·v / (|u||v|) is within a few ulp of the exact one, and the atan2
+//! form within a few 1e-16 rad of the exact angle, so cosines more than 1e-9 apart order the
+//! computed angles as they order the exact ones (|Δcos| ≤ |Δangle|); otherwise all three are
+//! computed.
+bool minMaxAngle(const MeshBuffers& m, size_t f, double& mn, double& mx);
+
 //! Angle statistics of every triangle. Indices must be < vertexCount() (precondition: the
 //! caller validated the buffers; out-of-range triangles are counted as degenerate).
 //! triangleMinAngles (optional): set to each triangle's smallest corner angle in radians,

@@ -1266,20 +1266,11 @@ std::vector<size_t> doubledTriangles(const MeshBuffers& m, const std::vector<uin
   return out;
 }
 
-double triangleMinAngle(const MeshBuffers& m, size_t t, double* maxAngle = nullptr) {
-  F::Vec3 p[3];
-  for (int c = 0; c < 3; ++c) {
-    uint32_t v = m.triangles[3 * t + c];
-    p[c] = {m.positions[3 * v], m.positions[3 * v + 1], m.positions[3 * v + 2]};
-  }
-  double lo = INFINITY, hi = 0;
-  for (int c = 0; c < 3; ++c) {
-    double a = F::angleBetween(p[(c + 1) % 3] - p[c], p[(c + 2) % 3] - p[c]) * 180.0 / kPi;
-    lo = std::min(lo, a);
-    hi = std::max(hi, a);
-  }
-  if (maxAngle) *maxAngle = hi;
-  return lo;
+// Smallest corner angle of triangle t in degrees (quality::minMaxAngle's, the report's measure);
+// 0 for a degenerate triangle.
+double triangleMinAngle(const MeshBuffers& m, size_t t) {
+  double mn, mx;
+  return quality::minMaxAngle(m, t, mn, mx) ? mn * 180.0 / kPi : 0.0;
 }
 
 //! Whether triangleMinAngle(m, t) < boundDeg, mostly without its atan2s: the corner cosines
