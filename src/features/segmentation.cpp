@@ -431,16 +431,24 @@ bool splitsIntoTwoDisks(const EdgeGraph& g, const Segmentation& seg, const std::
 }
 
 namespace {
+// Whether the patches `ids` of seg (its curves rebuilt) are all disks.
+bool patchesAreDisks(const EdgeGraph& g, const Segmentation& seg, const std::vector<uint32_t>& ids) {
+  const std::vector<uint8_t> mask = seg.curveMask();
+  for (const uint32_t p : ids)
+    if (!extractPatch(g, mask, seg.patches[p], false).isDisk()) return false;
+  return true;
+}
+
 // The safety net after moving cuts (curves rebuilt): every patch is still a disk, else the
 // edge kinds are put back as they were. Returns whether the moves are kept.
 bool keepCutsIfAllDisks(const EdgeGraph& g, Segmentation& seg, const std::vector<EdgeKind>& original) {
-  const std::vector<uint8_t> mask = seg.curveMask();
-  for (const auto& faces : seg.patches)
-    if (!extractPatch(g, mask, faces, false).isDisk()) {
-      seg.edgeKind = original;
-      rebuildCurves(g, seg);
-      return false;
-    }
+  std::vector<uint32_t> all(seg.patches.size());
+  for (size_t p = 0; p < all.size(); ++p) all[p] = uint32_t(p);
+  if (!patchesAreDisks(g, seg, all)) {
+    seg.edgeKind = original;
+    rebuildCurves(g, seg);
+    return false;
+  }
   seg.cutEdgeCount = 0;
   for (EdgeKind kd : seg.edgeKind) seg.cutEdgeCount += kd == EdgeKind::Cut;
   return true;
@@ -671,10 +679,7 @@ uint32_t straightenCutEars(const EdgeGraph& g, Segmentation& seg) {
         if (f != kNone) touched.push_back(seg.facePatch[f]);
     std::sort(touched.begin(), touched.end());
     touched.erase(std::unique(touched.begin(), touched.end()), touched.end());
-    const std::vector<uint8_t> mask = seg.curveMask();
-    for (uint32_t p : touched)
-      if (!extractPatch(g, mask, seg.patches[p], false).isDisk()) return false;
-    return true;
+    return patchesAreDisks(g, seg, touched);
   };
   std::vector<uint32_t> rim, rimEdges, toggled;
   uint32_t total = 0;
