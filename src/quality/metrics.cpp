@@ -247,7 +247,6 @@ bool minMaxAngle(const MeshBuffers& m, size_t f, double& mn, double& mx) {
   return true;
 }
 
-
 AngleStats angleStats(const MeshBuffers& mesh, std::vector<double>* triangleMinAngles) {
   AngleStats s;
   s.triangles = mesh.triangleCount();

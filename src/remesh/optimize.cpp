@@ -44,7 +44,7 @@ inline Corner smallestCorner(const Vec3& a, const Vec3& b, const Vec3& c) {
 
 double cornerDeg(const Corner& k) { return ((k.cr == 0 && k.dt == 0) ? 0.0 : dmath::atan2(k.cr, k.dt)) * kRadToDeg; }
 
-// cornerDeg without atan2 (NaN for a degenerate corner): atan(z) = z · P(z²) on [0, 1], the
+// cornerDeg without atan2 (NaN for cr = dt = 0): atan(z) = z · P(z²) on [0, 1], the
 // other octants by symmetry; P the polynomial of Abramowitz–Stegun 4.4.49 (Hastings 1955),
 // |error| <= 2e-8 rad (1.2e-6 degrees; optimize.h promises 1e-4).
 double cornerDegApprox(const Corner& k) {

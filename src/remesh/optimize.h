@@ -79,7 +79,7 @@ OptimizeStats optimizePatch(std::vector<double>& xy, std::vector<uint32_t>& tria
 double minAngleDeg3(const features::Vec3& a, const features::Vec3& b, const features::Vec3& c);
 
 //! minAngleDeg3 without atan2, within 1e-4 degrees of it (a polynomial arctangent; measured
-//! within 1.2e-6); NaN for a triangle whose smallest corner is degenerate. The optimizer ranks
+//! within 1.2e-6); 0 for a degenerate triangle, NaN when its three corners coincide. The optimizer ranks
 //! and decides its moves and flips by it, and takes minAngleDeg3 where the bound is at stake
 //! (within 1e-5 degrees of it).
 double minAngleDeg3Approx(const features::Vec3& a, const features::Vec3& b, const features::Vec3& c);
