@@ -57,7 +57,10 @@ SizingField computeSizing(const EdgeGraph& g, const Segmentation& seg, const Siz
 
   s.h.assign(g.vertexCount, s.target);
   if (tol > 0) {
-    std::vector<double> kappaSurface = o.surfaceKappa.size() == g.vertexCount ? o.surfaceKappa : surfaceCurvature(g);
+    // the caller's, when it gave one per vertex (not copied); else the graph's own
+    std::vector<double> ownKappa;
+    if (o.surfaceKappa.size() != g.vertexCount) ownKappa = surfaceCurvature(g);
+    const std::vector<double>& kappaSurface = o.surfaceKappa.size() == g.vertexCount ? o.surfaceKappa : ownKappa;
     // from v along curve edge e to the first vertex that is no split point (see
     // firstSplitVertex); a split point on a curve has exactly two curve edges
     auto alongCurve = [&](uint32_t v, uint32_t e) {
