@@ -285,8 +285,10 @@ export interface RemeshOptions {
   featureAngle?: number;
   /** Turning angle of a feature curve that makes a corner; default 50. */
   cornerTurn?: number;
-  /** Chains of sharp edges shorter than this in all, none of them at 60° or more, are not
-   *  features (absolute; < 0 or absent: twice the target edge length; 0: keep every sharp edge). */
+  /** Sharp edges are creases only in chains that stand out of their neighbourhood and are at least
+   *  this long, or that stand out strongly or bridge two curves: the facets of a coarse or noisy
+   *  surface are not creases (absolute; < 0 or absent: twice the target edge length; 0: keep every
+   *  sharp edge). */
   minFeatureLength?: number;
   /** Patches narrower than this (2·area / perimeter) are merged into a neighbour, dropping the sharp
    *  edges between them (absolute; < 0: half the sizing's smallest edge, target/20 by default;
@@ -361,7 +363,7 @@ export interface RemeshReport {
   featureCurvesKept: number;
   sharpEdges: number;
   cutEdges: number;
-  /** Sharp edges dropped as chains shorter than minFeatureLength. */
+  /** Sharp edges (above featureAngle) found not to be creases (see minFeatureLength). */
   droppedFeatureEdges: number;
   patches: number;
   curves: number;

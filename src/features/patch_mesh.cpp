@@ -1,21 +1,11 @@
 #include <algorithm>
 #include "features/patch_mesh.h"
+#include "core/union_find.h"
 
 #include <numeric>
 #include <unordered_map>
 
 namespace conformesh::features {
-namespace {
-struct UnionFind {
-  std::vector<uint32_t> p;
-  explicit UnionFind(size_t n) : p(n) { std::iota(p.begin(), p.end(), 0u); }
-  uint32_t find(uint32_t x) {
-    while (p[x] != x) x = p[x] = p[p[x]];
-    return x;
-  }
-  void unite(uint32_t a, uint32_t b) { p[find(a)] = find(b); }
-};
-}  // namespace
 
 PatchMesh extractPatch(const EdgeGraph& g, const std::vector<uint8_t>& isCurve,
                        const std::vector<uint32_t>& faces, bool traceLoops) {

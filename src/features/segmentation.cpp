@@ -1,4 +1,5 @@
 #include "features/segmentation.h"
+#include "features/creases.h"
 #include "core/detmath.h"
 
 #include <algorithm>
@@ -890,44 +891,20 @@ Segmentation segment(const EdgeGraph& g, const FeatureOptions& options, const Pr
   seg.cornerTurnDeg = options.cornerTurnDeg;
   seg.junctionScale = options.junctionScale;
   seg.edgeKind.assign(g.edgeCount(), EdgeKind::None);
-  const double cosLimit = dmath::cos(options.featureAngleDeg * kPi / 180.0);
-  for (uint32_t e = 0; e < g.edgeCount(); ++e) {
-    if (g.isBoundary(e)) {
-      seg.edgeKind[e] = EdgeKind::Boundary;
-      continue;
+  if (options.detectCreases) {
+    CreaseOptions co;
+    co.featureAngleDeg = options.featureAngleDeg;
+    co.minLength = options.minFeatureLength;
+    const Creases creases = detectCreases(g, co);
+    for (uint32_t e = 0; e < g.edgeCount(); ++e) {
+      if (g.isBoundary(e)) seg.edgeKind[e] = EdgeKind::Boundary;
+      else if (creases.edge[e]) seg.edgeKind[e] = EdgeKind::Feature;
     }
-    Vec3 n0 = g.faceNormal(g.edgeFaces[e][0]), n1 = g.faceNormal(g.edgeFaces[e][1]);
-    if (norm(n0) == 0 || norm(n1) == 0) continue;  // zero-area face: no meaningful dihedral angle
-    if (dot(n0, n1) < cosLimit) {
-      seg.edgeKind[e] = EdgeKind::Feature;
-      ++seg.sharpEdgeCount;
-    }
-  }
-  if (options.minFeatureLength > 0) {
-    // Connected chains of sharp edges shorter than minFeatureLength in all, none of whose edges
-    // is as sharp as minFeatureKeepDeg, are noise (a scan's bumps): they are not features.
-    std::vector<uint32_t> parent(g.vertexCount);
-    for (uint32_t v = 0; v < g.vertexCount; ++v) parent[v] = v;
-    auto find = [&](uint32_t v) {
-      while (parent[v] != v) v = parent[v] = parent[parent[v]];
-      return v;
-    };
+    seg.sharpEdgeCount = creases.creaseEdges;
+    seg.droppedFeatureEdges = creases.candidates - creases.creaseEdges;
+  } else {
     for (uint32_t e = 0; e < g.edgeCount(); ++e)
-      if (seg.edgeKind[e] == EdgeKind::Feature) parent[find(g.edgeVerts[e][0])] = find(g.edgeVerts[e][1]);
-    std::vector<double> length(g.vertexCount, 0.0), minDot(g.vertexCount, 1.0);
-    for (uint32_t e = 0; e < g.edgeCount(); ++e)
-      if (seg.edgeKind[e] == EdgeKind::Feature) {
-        const uint32_t r = find(g.edgeVerts[e][0]);
-        length[r] += g.edgeLength(e);
-        minDot[r] = std::min(minDot[r], dot(g.faceNormal(g.edgeFaces[e][0]), g.faceNormal(g.edgeFaces[e][1])));
-      }
-    const double keepDot = dmath::cos(options.minFeatureKeepDeg * kPi / 180.0);
-    for (uint32_t e = 0; e < g.edgeCount(); ++e)
-      if (seg.edgeKind[e] == EdgeKind::Feature && length[find(g.edgeVerts[e][0])] < options.minFeatureLength && minDot[find(g.edgeVerts[e][0])] > keepDot) {
-        seg.edgeKind[e] = EdgeKind::None;
-        --seg.sharpEdgeCount;
-        ++seg.droppedFeatureEdges;
-      }
+      if (g.isBoundary(e)) seg.edgeKind[e] = EdgeKind::Boundary;
   }
   std::vector<uint8_t> userEdge(g.edgeCount(), 0);
   for (const auto& fe : options.featureEdges) {

@@ -22,12 +22,14 @@ struct FeatureOptions {
   double featureAngleDeg = 40.0;
   //! A vertex inside a curve becomes a corner when the polyline turns by more than this (degrees).
   double cornerTurnDeg = 50.0;
-  //! Chains of sharp edges (connected through shared vertices) whose total length is below this
-  //! are dropped, unless one of their edges has a dihedral angle of minFeatureKeepDeg or more:
-  //! the noise of a scanned surface. 0 keeps every sharp edge. User feature edges are never
-  //! dropped.
+  //! Chains of sharp edges shorter than this (absolute) are features only where they stand out
+  //! of their neighbourhood strongly or bridge two curves (features/creases.h): the facets of a
+  //! coarse or noisy tessellation are not creases. 0 keeps every sharp edge. User feature edges
+  //! are never dropped.
   double minFeatureLength = 0.0;
-  double minFeatureKeepDeg = 60.0;
+  //! false: no edge is sharp by its dihedral angle; the features are featureEdges alone (the
+  //! creases were detected on the mesh this one was refined from).
+  bool detectCreases = true;
   //! Patches narrower than this (absolute; twice their area over their perimeter: the width of a
   //! strip) are merged into a neighbour by dropping the sharp edges between them: a chamfer or
   //! fillet strip far narrower than the output edges, a sliver face between two sharp edges.

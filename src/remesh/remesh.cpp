@@ -1367,7 +1367,12 @@ RemeshResult Pipeline::run(const MeshBuffers& input) {
     // a tiny target on a big surface must not split without end: no more new vertices than
     // the budget (the output limits are checked once the sizing is known)
     po.maxEdgeLength = target > 0 ? std::max(kPreconditionEdgeFactor * target, std::sqrt(area / (0.4 * double(po.maxNewVertices)))) : 0.0;
-    pre_ = precondition(in, userFeatures, po);
+    // the creases found on the input, kept as they are on the preconditioned mesh (the crease
+    // tests look at neighbourhoods, which the splits change)
+    std::vector<std::array<uint32_t, 2>> creases = userFeatures;
+    for (uint32_t e = 0; e < g_.edgeCount(); ++e)
+      if (seg_.edgeKind[e] == F::EdgeKind::Feature) creases.push_back(g_.edgeVerts[e]);
+    pre_ = precondition(in, creases, po);
     // no patch needs cuts, so nothing was changed: the segmentation of the input stands
     if (pre_.splits > 0 || pre_.flips > 0) {
       // the surface's curvature from the input as given (features/sizing.h), carried to the
@@ -1378,9 +1383,12 @@ RemeshResult Pipeline::run(const MeshBuffers& input) {
       for (size_t v = in.vertexCount(); v < surfaceKappa.size(); ++v)
         surfaceKappa[v] = std::max(surfaceKappa[pre_.parents[v][0]], surfaceKappa[pre_.parents[v][1]]);
       fo.featureEdges = pre_.protectedEdges;
+      fo.detectCreases = false;
       g_ = F::buildEdgeGraph(pre_.mesh);
       graphMesh_ = &pre_.mesh;
+      const uint32_t dropped = seg_.droppedFeatureEdges;
       seg_ = F::segment(g_, fo, progress_);
+      seg_.droppedFeatureEdges = dropped;
     }
   }
   F::SizingOptions so;

@@ -41,8 +41,9 @@ struct RemeshOptions {
   double featureAngleDeg = 40.0;
   //! A feature curve turning by more than this at a vertex gets a corner there (degrees).
   double cornerTurnDeg = 50.0;
-  //! Chains of sharp edges (connected through shared vertices) shorter than this in all, none of
-  //! whose edges has a dihedral angle of 60° or more, are not features: a scan's noise (absolute;
+  //! Sharp edges are creases only in chains (straight continuations) that stand out of their
+  //! neighbourhood and are at least this long, or that stand out strongly or bridge two curves
+  //! (features/creases.h): the facets of a coarse or noisy surface are not creases (absolute;
   //! < 0: twice the target edge length; 0: keep every sharp edge). User feature edges are always
   //! kept. The report counts the dropped edges.
   double minFeatureLength = -1.0;
@@ -128,7 +129,7 @@ struct RemeshReport {
   double maxDistanceToInputRel = 0;  //!< largest output vertex distance to the input / diagonal
   size_t featureCurves = 0, featureCurvesKept = 0;
   size_t sharpEdges = 0, cutEdges = 0;
-  size_t droppedFeatureEdges = 0;  //!< sharp edges in chains shorter than minFeatureLength
+  size_t droppedFeatureEdges = 0;  //!< sharp edges found not to be creases (minFeatureLength)
   size_t patches = 0, curves = 0, curveSamples = 0;
   std::vector<int> flowIterations;  //!< Newton iterations per patch
   size_t patchSplitsForScale = 0;

@@ -1,0 +1,155 @@
+#include "features/creases.h"
+
+#include <algorithm>
+#include <cmath>
+#include <tuple>
+
+#include "core/status.h"
+#include "core/union_find.h"
+
+namespace conformesh::features {
+namespace {
+
+constexpr double kPi = 3.14159265358979323846;
+
+// Per candidate end (2·e + 0 at edgeVerts[e][0], 2·e + 1 at edgeVerts[e][1]): the candidate that
+// continues it straightest at that vertex, or kNone. Pairs are matched greedily, smallest turn
+// first (ties by edge ids), so each edge continues at most one other at each end.
+std::vector<uint32_t> pairContinuations(const EdgeGraph& g, const std::vector<uint8_t>& candidate, double maxTurn) {
+  std::vector<uint32_t> partner(2 * size_t(g.edgeCount()), kNone);
+  std::vector<uint32_t> at;
+  std::vector<std::tuple<double, uint32_t, uint32_t>> pairs;
+  auto end = [&](uint32_t e, uint32_t v) { return 2 * e + (g.edgeVerts[e][0] == v ? 0u : 1u); };
+  for (uint32_t v = 0; v < g.vertexCount; ++v) {
+    at.clear();
+    for (uint32_t k = g.vertexEdgeStart[v]; k < g.vertexEdgeStart[v + 1]; ++k)
+      if (candidate[g.vertexEdgeIds[k]]) at.push_back(g.vertexEdgeIds[k]);
+    if (at.size() < 2) continue;
+    pairs.clear();
+    for (size_t i = 0; i < at.size(); ++i)
+      for (size_t j = i + 1; j < at.size(); ++j) {
+        const Vec3 in = g.positions[v] - g.positions[g.otherVertex(at[i], v)];
+        const Vec3 out = g.positions[g.otherVertex(at[j], v)] - g.positions[v];
+        const double turn = angleBetween(in, out);
+        if (turn <= maxTurn) pairs.emplace_back(turn, std::min(at[i], at[j]), std::max(at[i], at[j]));
+      }
+    std::sort(pairs.begin(), pairs.end());
+    for (const auto& [turn, a, b] : pairs) {
+      if (partner[end(a, v)] != kNone || partner[end(b, v)] != kNone) continue;
+      partner[end(a, v)] = b;
+      partner[end(b, v)] = a;
+    }
+  }
+  return partner;
+}
+
+}  // namespace
+
+Creases detectCreases(const EdgeGraph& g, const CreaseOptions& o) {
+  if (!(o.featureAngleDeg >= 0 && o.featureAngleDeg <= 180))
+    fail(Code::InvalidArgument, Stage::Segment, "featureAngle must be in [0, 180] degrees");
+  if (!(o.minLength >= 0 && o.minLength < INFINITY))
+    fail(Code::InvalidArgument, Stage::Segment, "minFeatureLength must be finite and >= 0");
+  if (!(o.continuationDeg >= 0 && o.continuationDeg <= 180) || !(o.contrast >= 1) || !(o.strongContrast >= o.contrast))
+    fail(Code::InvalidArgument, Stage::Segment, "crease continuation in [0, 180], 1 <= contrast <= strongContrast");
+  const uint32_t ne = g.edgeCount();
+  Creases out;
+  out.edge.assign(ne, 0);
+  std::vector<double> dihedral(ne, 0.0);
+  const double limit = o.featureAngleDeg * kPi / 180.0;
+  for (uint32_t e = 0; e < ne; ++e) {
+    if (g.isBoundary(e)) continue;
+    const Vec3 n0 = g.faceNormal(g.edgeFaces[e][0]), n1 = g.faceNormal(g.edgeFaces[e][1]);
+    if (norm(n0) == 0 || norm(n1) == 0) continue;  // zero-area face: no meaningful dihedral angle
+    dihedral[e] = angleBetween(n0, n1);
+    if (dihedral[e] > limit) out.edge[e] = 1, ++out.candidates;
+  }
+  out.creaseEdges = out.candidates;
+  if (o.minLength <= 0 || out.candidates == 0) return out;
+  const std::vector<uint8_t> candidate = out.edge;
+
+  const std::vector<uint32_t> partner = pairContinuations(g, candidate, o.continuationDeg * kPi / 180.0);
+  UnionFind chain(ne);
+  for (uint32_t e = 0; e < ne; ++e)
+    for (int k = 0; k < 2; ++k)
+      if (partner[2 * e + k] != kNone) chain.unite(e, partner[2 * e + k]);
+
+  // contrast: the dihedral against the median of the other edges at both ends (the edge's own
+  // continuations excluded: they are the crease, not its neighbourhood)
+  std::vector<double> around;
+  struct ChainStats { double length = 0, distinct = 0, strong = 0; uint32_t edges = 0; };
+  std::vector<ChainStats> stats(ne);
+  for (uint32_t e = 0; e < ne; ++e) {
+    if (!candidate[e]) continue;
+    around.clear();
+    for (int k = 0; k < 2; ++k) {
+      const uint32_t v = g.edgeVerts[e][k];
+      for (uint32_t i = g.vertexEdgeStart[v]; i < g.vertexEdgeStart[v + 1]; ++i) {
+        const uint32_t f = g.vertexEdgeIds[i];
+        if (f != e && f != partner[2 * e + k] && !g.isBoundary(f)) around.push_back(dihedral[f]);
+      }
+    }
+    double median = 0;
+    if (!around.empty()) {
+      std::nth_element(around.begin(), around.begin() + around.size() / 2, around.end());
+      median = around[around.size() / 2];
+    }
+    ChainStats& s = stats[chain.find(e)];
+    const double len = g.edgeLength(e);
+    s.length += len;
+    ++s.edges;
+    if (dihedral[e] >= o.contrast * median) s.distinct += len;
+    if (dihedral[e] >= o.strongContrast * median) s.strong += len;
+  }
+  std::vector<uint8_t> keptChain(ne, 0);
+  for (uint32_t e = 0; e < ne; ++e) {
+    if (!candidate[e] || chain.find(e) != e) continue;
+    ++out.chains;
+    const ChainStats& s = stats[e];
+    // a long chain that mostly stands out (three edges at least: one or two edges of a coarse
+    // tessellation are no evidence of a line), or one that mostly stands out strongly
+    const bool distinct = s.distinct >= 0.5 * s.length, strong = s.strong >= 0.5 * s.length;
+    keptChain[e] = s.length >= o.minLength && ((distinct && s.edges >= 3) || strong);
+  }
+  // bridges: a short chain that mostly stands out and whose every free end touches another
+  // kept or strongly standing-out chain, or the boundary, closes a region instead of dangling
+  // in one (hysteresis: passes until none joins, capped). A network of short strong creases (a
+  // small CAD part) holds itself up; an isolated strong edge of a coarse surface does not.
+  std::vector<uint8_t> anchor(ne, 0);  // per chain root: kept, or strong
+  for (uint32_t e = 0; e < ne; ++e)
+    if (candidate[e] && chain.find(e) == e) anchor[e] = keptChain[e] || stats[e].strong >= 0.5 * stats[e].length;
+  auto touchesCurve = [&](uint32_t v, uint32_t root) {
+    for (uint32_t i = g.vertexEdgeStart[v]; i < g.vertexEdgeStart[v + 1]; ++i) {
+      const uint32_t f = g.vertexEdgeIds[i];
+      if (g.isBoundary(f)) return true;
+      if (candidate[f] && chain.find(f) != root && anchor[chain.find(f)]) return true;
+    }
+    return false;
+  };
+  std::vector<uint8_t> bridged(ne, 1);  // per chain root: every free end touches a curve
+  for (int pass = 0; pass < 8; ++pass) {  // hard cap; each pass only adds chains
+    std::fill(bridged.begin(), bridged.end(), 1);
+    for (uint32_t e = 0; e < ne; ++e) {
+      if (!candidate[e]) continue;
+      const uint32_t r = chain.find(e);
+      if (keptChain[r]) continue;
+      for (int k = 0; k < 2; ++k)
+        if (partner[2 * e + k] == kNone && !touchesCurve(g.edgeVerts[e][k], r)) bridged[r] = 0;
+    }
+    bool any = false;
+    for (uint32_t e = 0; e < ne; ++e)
+      if (candidate[e] && chain.find(e) == e && !keptChain[e] && bridged[e] && stats[e].distinct >= 0.5 * stats[e].length)
+        keptChain[e] = anchor[e] = 1, any = true;
+    if (!any) break;
+  }
+  out.creaseEdges = 0;
+  for (uint32_t e = 0; e < ne; ++e) {
+    if (!candidate[e]) continue;
+    out.edge[e] = keptChain[chain.find(e)];
+    out.creaseEdges += out.edge[e];
+    if (chain.find(e) == e) out.keptChains += keptChain[e];
+  }
+  return out;
+}
+
+}  // namespace conformesh::features

@@ -1,0 +1,55 @@
+// conformesh — creases, not noise: which sharp edges of a tessellation are features.
+//
+// Pipeline stage "segment" (docs/ARCHITECTURE.md), first step. An edge whose dihedral angle
+// exceeds the feature angle is a candidate. On CAD the candidates are creases: long chains of
+// edges whose neighbourhood is flat or gently curved. On a coarse or noisy tessellation of a
+// smooth surface (scans, organic models) many edges exceed any fixed angle: they are facets, not
+// creases, and each one kept becomes a curve, so patches, exempt junctions and grading. Three
+// tests tell them apart, all at once along a chain (hysteresis: a chain is kept or dropped whole):
+//   * contrast: an edge's dihedral against the median dihedral of the edges around its two ends
+//     (its own chain excluded): a crease stands out of a smooth neighbourhood, a facet of a
+//     coarse surface does not;
+//   * continuation: candidates at a vertex join one chain only where the chain goes on straight
+//     (turn below continuationDeg, best pairs first), so the zigzags of noise fall apart into
+//     short pieces;
+//   * length: against the output's scale (minLength, about twice the target edge length), a
+//     chain shorter than that carries nothing the output can show unless it stands out strongly
+//     or bridges two curves.
+// Canny's hysteresis (1986) along chains; the contrast test follows the neighbourhood-relative
+// sharpness of Hubeli & Gross (2001, Multiresolution feature extraction for unstructured meshes).
+#pragma once
+
+#include <cstdint>
+#include <vector>
+
+#include "features/edge_graph.h"
+
+namespace conformesh::features {
+
+struct CreaseOptions {
+  //! Candidates: interior edges whose face normals differ by more than this (degrees).
+  double featureAngleDeg = 40.0;
+  //! Chains (absolute length) below this are kept only when they stand out strongly or bridge
+  //! two other curves. 0 keeps every candidate (no chain tests at all).
+  double minLength = 0.0;
+  //! Two candidates at a vertex continue one chain when the polyline turns by less (degrees).
+  double continuationDeg = 45.0;
+  //! An edge stands out when its dihedral is at least this times the median dihedral around it.
+  double contrast = 3.0;
+  //! ... and stands out strongly at this ratio (short chains need it).
+  double strongContrast = 6.0;
+};
+
+struct Creases {
+  std::vector<uint8_t> edge;  //!< per edge: 1 for a crease
+  uint32_t candidates = 0;    //!< edges above the feature angle
+  uint32_t creaseEdges = 0;   //!< of those, kept
+  uint32_t chains = 0;        //!< chains of candidates formed
+  uint32_t keptChains = 0;
+};
+
+//! Detect the creases of `g`. Deterministic; O(edges · valence²). Throws Error(InvalidArgument)
+//! for options out of range.
+Creases detectCreases(const EdgeGraph& g, const CreaseOptions& options);
+
+}  // namespace conformesh::features

@@ -1,0 +1,81 @@
+#include <doctest/doctest.h>
+
+#include <cmath>
+#include <cstdint>
+
+#include "features/creases.h"
+#include "features/edge_graph.h"
+#include "features/test_shapes.h"
+
+using namespace conformesh;
+using namespace conformesh::features;
+
+namespace {
+// A flat grid whose interior vertices are lifted by a deterministic pseudo-random height: a
+// coarse tessellation of a rough sheet, with many edges above 40° and no crease.
+MeshBuffers roughSheet(int n, double amplitude) {
+  MeshBuffers m = testshapes::square(n);
+  uint32_t state = 12345u;
+  for (size_t v = 0; v < m.positions.size() / 3; ++v) {
+    state = state * 1664525u + 1013904223u;
+    const double x = m.positions[3 * v], y = m.positions[3 * v + 1];
+    if (x > 0 && x < 1 && y > 0 && y < 1) m.positions[3 * v + 2] = amplitude * (double(state >> 8) / double(1u << 24) - 0.5);
+  }
+  return m;
+}
+
+// A sheet folded by `foldDeg` along x = 0.5 (n × n grid), lifted like roughSheet by `amplitude`.
+MeshBuffers foldedSheet(int n, double foldDeg, double amplitude) {
+  MeshBuffers m = roughSheet(n, amplitude);
+  const double t = std::tan(foldDeg * 3.14159265358979323846 / 180.0);
+  for (size_t v = 0; v < m.positions.size() / 3; ++v) {
+    const double x = m.positions[3 * v];
+    if (x > 0.5) m.positions[3 * v + 2] += (x - 0.5) * t;
+  }
+  return m;
+}
+
+uint32_t creasesOnFold(const EdgeGraph& g, const Creases& c) {
+  uint32_t n = 0;
+  for (uint32_t e = 0; e < g.edgeCount(); ++e)
+    if (c.edge[e] && std::abs(g.positions[g.edgeVerts[e][0]].x - 0.5) < 1e-12 && std::abs(g.positions[g.edgeVerts[e][1]].x - 0.5) < 1e-12) ++n;
+  return n;
+}
+}  // namespace
+
+TEST_CASE("creases: the facets of a rough coarse sheet are not creases; minLength 0 keeps every sharp edge") {
+  EdgeGraph g = buildEdgeGraph(roughSheet(16, 0.12));
+  CreaseOptions all;
+  const Creases every = detectCreases(g, all);
+  REQUIRE(every.candidates > 40);  // the sheet is rough at 40°
+  CHECK(every.creaseEdges == every.candidates);
+  CreaseOptions o;
+  o.minLength = 0.25;  // four grid edges
+  const Creases c = detectCreases(g, o);
+  MESSAGE("rough sheet: " << c.candidates << " sharp edges, " << c.chains << " chains, " << c.creaseEdges << " kept");
+  CHECK(c.candidates == every.candidates);
+  CHECK(c.creaseEdges * 10 <= c.candidates);
+}
+
+TEST_CASE("creases: a fold across a mildly rough sheet is kept whole, the roughness is not") {
+  EdgeGraph g = buildEdgeGraph(foldedSheet(16, 70.0, 0.01));
+  CreaseOptions o;
+  o.minLength = 0.25;
+  const Creases c = detectCreases(g, o);
+  CHECK(creasesOnFold(g, c) == 16);  // every edge of the fold line
+  CHECK(c.creaseEdges == 16);
+  CHECK(c.keptChains == 1);
+}
+
+TEST_CASE("creases: options out of range are InvalidArgument") {
+  EdgeGraph g = buildEdgeGraph(testshapes::cube(2));
+  CreaseOptions o;
+  o.contrast = 0.5;
+  CHECK_THROWS_AS(detectCreases(g, o), Error);
+  o = CreaseOptions{};
+  o.featureAngleDeg = 200;
+  CHECK_THROWS_AS(detectCreases(g, o), Error);
+  o = CreaseOptions{};
+  o.minLength = -1;
+  CHECK_THROWS_AS(detectCreases(g, o), Error);
+}
