@@ -1,7 +1,7 @@
 // The package CLI (dist/cli.js, the `conformesh` bin) running the WASM module in Node: output,
 // exit codes and JSON shapes; and, when the native CLI has the same command, identical output.
 import { execFileSync, spawnSync } from 'node:child_process';
-import { existsSync, readFileSync } from 'node:fs';
+import { existsSync, readFileSync, rmSync } from 'node:fs';
 import { join } from 'node:path';
 import { fileURLToPath } from 'node:url';
 import { describe, expect, it } from 'vitest';
@@ -147,6 +147,34 @@ describe('package CLI: refine2d, flatten, remesh', () => {
     expect(readFileSync(out('wasm')).equals(readFileSync(out('native')))).toBe(true);
     const err = ['flatten', data('spot.obj'), '-o', join(tmp, 'x.obj'), '--json'];
     expect(run(err).stdout).toBe(spawnSync(native, err, { encoding: 'utf8' }).stdout);
+  });
+
+  it('remesh: a broken output exits 1 with the message, writes no file; --keep-defective writes it and still exits 1', () => {
+    const input = join(root, 'web', 'samples', 'icosphere.obj');
+    const out = join(tmp, 'cli-defect.obj');
+    const args = ['remesh', input, '--edge-length-rel', '0.1', '--no-hausdorff', '--force-topology-defect', '-o', out];
+    rmSync(out, { force: true });
+    const broken = run(args);
+    expect(broken.status).toBe(1);
+    expect(broken.stderr).toMatch(/^conformesh: output topology differs from the input: .*1 non-manifold edge.* \(InternalError, stage report\)$/m);
+    expect(broken.stdout).toBe('');
+    expect(existsSync(out)).toBe(false);
+    const kept = run([...args, '--keep-defective']);
+    expect(kept.status).toBe(1);
+    expect(kept.stderr).toBe(broken.stderr);
+    expect(existsSync(out)).toBe(true);
+    const json = run([...args, '--json']);
+    expect(json.status).toBe(1);
+    expect(JSON.parse(json.stdout).error).toMatchObject({ code: 18, name: 'InternalError', stage: 'report' });
+    if (nativeHas('remesh')) {
+      for (const a of [args, [...args, '--keep-defective'], [...args, '--json']]) {
+        rmSync(out, { force: true });
+        const nat = spawnSync(native, a, { encoding: 'utf8' });
+        expect(existsSync(out)).toBe(a.includes('--keep-defective'));
+        const wasm = run(a);
+        expect({ out: nat.stdout, err: nat.stderr, status: nat.status }).toEqual({ out: wasm.stdout, err: wasm.stderr, status: wasm.status });
+      }
+    }
   });
 
   it.skipIf(!nativeHas('remesh'))('remesh --json: the native report, the same values but the timings', () => {
