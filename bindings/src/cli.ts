@@ -261,6 +261,7 @@ const commands: Record<string, Command> = {
           ['euclideanFlips', jsonNumber(R.euclideanFlips)],
           ['seconds', jsonNumber(R.seconds)],
           ['invertedTriangles', jsonNumber(R.invertedTriangles)],
+          ['inputTrianglesInvertedInUv', jsonNumber(R.inputTrianglesInvertedInUv)],
           ['boundaryCrossings', jsonNumber(R.boundaryCrossings)],
           ['angleDistortionMax', jsonNumber(R.angleDistortionMax)],
           ['angleDistortionMean', jsonNumber(R.angleDistortionMean)],
@@ -277,6 +278,10 @@ const commands: Record<string, Command> = {
             `error ${formatG(R.maxCurvatureError, 3)}, ${R.flips} flips, ${fixed(R.seconds, 3)} s -> ${out}\n`,
         );
       }
+      if (R.inputTrianglesInvertedInUv > 0 && !args.flags.has('--json'))
+        process.stderr.write(
+          `conformesh: warning: ${R.inputTrianglesInvertedInUv} triangles of ${out} are inverted in uv (vertex uv of input triangles; the layout has ${R.invertedTriangles})\n`,
+        );
       return 0;
     },
   },

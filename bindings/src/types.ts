@@ -242,6 +242,7 @@ export interface FlattenReport {
   layoutLengthError: number;
   angleDistortionMean: number;
   angleDistortionMax: number;
+  /** Input triangles inverted or degenerate in uv (exact orientation): a mesh written with `uv` has these; the layout may have none. */
   inputTrianglesInvertedInUv: number;
   areaDistortionMin: number;
   areaDistortionMax: number;
