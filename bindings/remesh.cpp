@@ -106,11 +106,43 @@ ProgressFn overallProgress(ProgressFn stageProgress) {
   };
 }
 
+//! {mesh, report, patches?, patchOfTriangle?} of a result (patches with returnPatches).
+val resultToJs(const RemeshResult& r, bool returnPatches) {
+  val out = val::object();
+  out.set("mesh", bindings::meshToJs(r.mesh));
+  out.set("report", reportToJs(r.report));
+  if (returnPatches) {
+    val patches = val::array();
+    for (size_t p = 0; p < r.patches.size(); ++p) {
+      const RemeshPatch& rp = r.patches[p];
+      val layout = val::object();
+      layout.set("uv", bindings::typedArrayCopy(rp.layoutUv));
+      layout.set("triangles", bindings::typedArrayCopy(rp.layoutTriangles));
+      layout.set("inputFace", bindings::typedArrayCopy(rp.layoutInputFace));
+      layout.set("factor", bindings::typedArrayCopy(rp.layoutFactor));
+      val refined = val::object();
+      refined.set("uv", bindings::typedArrayCopy(rp.uv));
+      refined.set("triangles", bindings::typedArrayCopy(rp.triangles));
+      refined.set("outputVertex", bindings::typedArrayCopy(rp.outputVertex));
+      val e = val::object();
+      e.set("id", double(p));
+      e.set("layout", layout);
+      e.set("refined", refined);
+      patches.call<void>("push", e);
+    }
+    out.set("patches", patches);
+    out.set("patchOfTriangle", bindings::typedArrayCopy(r.patchOfTriangle));
+  }
+  return out;
+}
+
 //! remesh(positions, triangles, vertexSizing, featureEdges, options, progress)
 //!   -> {ok, value: {mesh: {positions, triangles}, report}}
-//! A failed RemeshResult (status not Ok) becomes the failure object with its code and stage.
+//! A failed RemeshResult (status not Ok) becomes the failure object with its code and stage, and,
+//! when it has a mesh (keepDefectiveOutput), the result as `result`.
 val remeshJs(val positions, val triangles, val vertexSizing, val featureEdges, val options, val progress) {
-  return bindings::guarded(Stage::Api, [&] {
+  val defective = val::undefined();
+  val answer = bindings::guarded(Stage::Api, [&] {
     MeshBuffers mesh = bindings::meshFromJs(positions, triangles, val::undefined());
     RemeshOptions o;
     const Stage st = Stage::Api;
@@ -132,6 +164,8 @@ val remeshJs(val positions, val triangles, val vertexSizing, val featureEdges, v
     o.computeHausdorff = bindings::boolOption(options, "computeHausdorff", o.computeHausdorff, st);
     o.optimize = bindings::boolOption(options, "optimize", o.optimize, st);
     o.returnPatches = bindings::boolOption(options, "patches", o.returnPatches, st);
+    o.keepDefectiveOutput = bindings::boolOption(options, "keepDefectiveOutput", o.keepDefectiveOutput, st);
+    o.forceTopologyDefect = bindings::boolOption(options, "forceTopologyDefect", o.forceTopologyDefect, st);
     if (!options.isUndefined() && !options.isNull() && !options["boundary"].isUndefined() && !options["boundary"].isNull()) {
       val b = options["boundary"];
       const std::string s = b.isString() ? b.as<std::string>() : std::string();
@@ -158,34 +192,14 @@ val remeshJs(val positions, val triangles, val vertexSizing, val featureEdges, v
     if (fe.size() % 2 != 0) fail(Code::InvalidArgument, st, "featureEdges must hold 2 vertex indices per edge");
     for (size_t i = 0; i + 1 < fe.size(); i += 2) o.featureEdges.push_back({fe[i], fe[i + 1]});
     RemeshResult r = remesh(mesh, o, overallProgress(bindings::progressFromJs(progress)));
-    if (!r.status.ok()) throw Error(r.status.code, r.status.stage, r.status.message);
-    val out = val::object();
-    out.set("mesh", bindings::meshToJs(r.mesh));
-    out.set("report", reportToJs(r.report));
-    if (o.returnPatches) {
-      val patches = val::array();
-      for (size_t p = 0; p < r.patches.size(); ++p) {
-        const RemeshPatch& rp = r.patches[p];
-        val layout = val::object();
-        layout.set("uv", bindings::typedArrayCopy(rp.layoutUv));
-        layout.set("triangles", bindings::typedArrayCopy(rp.layoutTriangles));
-        layout.set("inputFace", bindings::typedArrayCopy(rp.layoutInputFace));
-        layout.set("factor", bindings::typedArrayCopy(rp.layoutFactor));
-        val refined = val::object();
-        refined.set("uv", bindings::typedArrayCopy(rp.uv));
-        refined.set("triangles", bindings::typedArrayCopy(rp.triangles));
-        refined.set("outputVertex", bindings::typedArrayCopy(rp.outputVertex));
-        val e = val::object();
-        e.set("id", double(p));
-        e.set("layout", layout);
-        e.set("refined", refined);
-        patches.call<void>("push", e);
-      }
-      out.set("patches", patches);
-      out.set("patchOfTriangle", bindings::typedArrayCopy(r.patchOfTriangle));
+    if (!r.status.ok()) {
+      if (!r.mesh.triangles.empty()) defective = resultToJs(r, o.returnPatches);
+      throw Error(r.status.code, r.status.stage, r.status.message);
     }
-    return out;
+    return resultToJs(r, o.returnPatches);
   });
+  if (!defective.isUndefined()) answer.set("result", defective);
+  return answer;
 }
 
 }  // namespace

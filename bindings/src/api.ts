@@ -191,6 +191,8 @@ const remeshKeys: (keyof RemeshOptions)[] = [
   'maxTriangles',
   'maxVertices',
   'maxMemoryBytes',
+  'keepDefectiveOutput',
+  'forceTopologyDefect',
 ];
 
 const validateKeys: (keyof ValidateOptions)[] = [

@@ -7,7 +7,7 @@ import { setFlagsFromString } from 'node:v8';
 import type { Conformesh } from './api.js';
 import { init } from './index.js';
 import { ConformeshError, StatusCode } from './status.js';
-import type { MeshFormat } from './types.js';
+import type { MeshFormat, RemeshResult } from './types.js';
 
 interface Args {
   positional: string[];
@@ -175,7 +175,7 @@ const refine2dUsage =
 const flattenUsage =
   'flatten IN -o OUT.obj [--boundary circle|free|corners] [--corner-angle DEG] [--no-flips] [--json]';
 const remeshUsage =
-  'remesh IN -o OUT [--min-angle D] [--edge-length L | --edge-length-rel R] [--feature-angle D] [--min-feature-length L] [--min-patch-width W] [--chord-tol T] [--boundary free|corners|circle] [--max-triangles N] [--max-vertices N] [--json] [--no-hausdorff] [--no-optimize] [--optimize-iterations N] [--optimize-tolerance T]';
+  'remesh IN -o OUT [--min-angle D] [--edge-length L | --edge-length-rel R] [--feature-angle D] [--min-feature-length L] [--min-patch-width W] [--chord-tol T] [--boundary free|corners|circle] [--max-triangles N] [--max-vertices N] [--json] [--no-hausdorff] [--no-optimize] [--optimize-iterations N] [--optimize-tolerance T] [--keep-defective] [--force-topology-defect]';
 
 const infoUsage = 'info FILE [--json] [--weld TOL] [--format NAME]';
 
@@ -261,6 +261,7 @@ const commands: Record<string, Command> = {
           ['euclideanFlips', jsonNumber(R.euclideanFlips)],
           ['seconds', jsonNumber(R.seconds)],
           ['invertedTriangles', jsonNumber(R.invertedTriangles)],
+          ['inputTrianglesInvertedInUv', jsonNumber(R.inputTrianglesInvertedInUv)],
           ['boundaryCrossings', jsonNumber(R.boundaryCrossings)],
           ['angleDistortionMax', jsonNumber(R.angleDistortionMax)],
           ['angleDistortionMean', jsonNumber(R.angleDistortionMean)],
@@ -277,6 +278,10 @@ const commands: Record<string, Command> = {
             `error ${formatG(R.maxCurvatureError, 3)}, ${R.flips} flips, ${fixed(R.seconds, 3)} s -> ${out}\n`,
         );
       }
+      if (R.inputTrianglesInvertedInUv > 0 && !args.flags.has('--json'))
+        process.stderr.write(
+          `conformesh: warning: ${R.inputTrianglesInvertedInUv} triangles of ${out} are inverted in uv (vertex uv of input triangles; the layout has ${R.invertedTriangles})\n`,
+        );
       return 0;
     },
   },
@@ -285,7 +290,7 @@ const commands: Record<string, Command> = {
     usage: remeshUsage,
     summary: 'remesh a surface: conformal flattening per patch, planar Delaunay refinement, lift',
     valueFlags: ['-o', '--min-angle', '--edge-length', '--edge-length-rel', '--feature-angle', '--min-feature-length', '--min-patch-width', '--chord-tol', '--max-triangles', '--max-vertices', '--boundary', '--optimize-iterations', '--optimize-tolerance'],
-    switches: ['--json', '--no-hausdorff', '--no-optimize'],
+    switches: ['--json', '--no-hausdorff', '--no-optimize', '--keep-defective', '--force-topology-defect'],
     async run(args, api) {
       if (args.positional.length !== 1) throw new ConformeshError('InvalidArgument', 'api', 'remesh needs exactly one input file');
       if (args.flags.has('--edge-length') && args.flags.has('--edge-length-rel'))
@@ -300,6 +305,8 @@ const commands: Record<string, Command> = {
         chordTolerance: numberFlag(args, '--chord-tol', -1),
         computeHausdorff: !args.flags.has('--no-hausdorff'),
         optimize: !args.flags.has('--no-optimize'),
+        keepDefectiveOutput: args.flags.has('--keep-defective'),
+        forceTopologyDefect: args.flags.has('--force-topology-defect'),
         ...(args.flags.has('--optimize-iterations') ? { optimizeIterations: integerFlag(args, '--optimize-iterations') } : {}),
         ...(args.flags.has('--optimize-tolerance') ? { optimizeTolerance: numberFlag(args, '--optimize-tolerance', 0) } : {}),
         boundary: boundaryFlag(args, 'free'),
@@ -309,7 +316,14 @@ const commands: Record<string, Command> = {
       };
       const path = args.positional[0]!;
       const mesh = api.readMesh(await readFileBytes(path), { fileName: path });
-      const r = api.remesh(mesh, options);
+      let r: RemeshResult, failure: ConformeshError | undefined;
+      try {
+        r = api.remesh(mesh, options);
+      } catch (e) {
+        // a failed result has a mesh only with --keep-defective: it is written, and still an error
+        if (!(e instanceof ConformeshError && e.result)) throw e;
+        [r, failure] = [e.result, e];
+      }
       const out = args.flags.get('-o') ?? '';
       if (out !== '') {
         const slash = Math.max(out.lastIndexOf('/'), out.lastIndexOf('\\'));
@@ -319,6 +333,7 @@ const commands: Record<string, Command> = {
         if (!format) throw new ConformeshError('InvalidArgument', 'write', '-o: unknown extension (obj, off, stl, ply)');
         await writeFileBytes(out, api.writeMesh(r.mesh, format));
       }
+      if (failure) throw failure;
       const R = r.report;
       if (args.flags.has('--json')) {
         const num = (k: string, v: number) => `${jsonString(k)}:${jsonNumber(v)}`;

@@ -3,10 +3,13 @@
 import { ConformeshError, isErrorCode, isStageName, type StageName } from './status.js';
 import type { FlattenResult, MeshInfo, Pslg, Refine2dResult, RemeshResult, ValidateResult } from './types.js';
 
-/** What every fallible glue function returns (bindings/binding_util.h, `guarded`). */
+/**
+ * What every fallible glue function returns (bindings/binding_util.h, `guarded`). A failure may
+ * carry the result it was computed with (remesh with keepDefectiveOutput).
+ */
 export type RawResult<T> =
   | { ok: true; value: T }
-  | { ok: false; code: number; name: string; stage: string; message: string };
+  | { ok: false; code: number; name: string; stage: string; message: string; result?: T };
 
 export interface RawMesh {
   positions: Float64Array;
@@ -106,6 +109,7 @@ export function callRaw<T>(raw: RawModule, name: string, stage: StageName, fn: (
     isErrorCode(result.name) ? result.name : 'InternalError',
     isStageName(result.stage) ? result.stage : stage,
     result.message,
+    result.result as RemeshResult | undefined,
   );
 }
 

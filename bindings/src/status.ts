@@ -1,6 +1,7 @@
 // The status table as seen from JavaScript. The single definition is the C++ table
 // (src/core/status.h); this copy exists only so the TypeScript union of codes can be a type, and
 // tests/js/status.test.ts checks it row by row against the module's statusTable() export.
+import type { RemeshResult } from './types.js';
 
 /** Every status code by name, with its numeric value (same values as C++ `conformesh::Code`). */
 export const StatusCode = {
@@ -55,29 +56,34 @@ export function stageName(value: number): StageName {
   return stageNames.find((name) => Stage[name] === value) ?? 'api';
 }
 
-/** Structured form of a ConformeshError, safe to post between threads. */
+/** Structured form of a ConformeshError, safe to post between threads (`result` holds typed arrays). */
 export interface ConformeshErrorData {
   code: ErrorCode;
   value: number;
   stage: StageName;
   message: string;
+  result?: RemeshResult;
 }
 
 /**
  * The one error type of the package. `code` is the status-table name (`'ParseError'`, ...),
  * `value` its number, `stage` the pipeline stage it arose in; `message` says what and where.
+ * `result`: the defective output of a remesh that failed its topology check, when the call asked
+ * for it (RemeshOptions.keepDefectiveOutput); otherwise undefined.
  */
 export class ConformeshError extends Error {
   readonly code: ErrorCode;
   readonly value: number;
   readonly stage: StageName;
+  readonly result?: RemeshResult;
 
-  constructor(code: ErrorCode, stage: StageName, message: string) {
+  constructor(code: ErrorCode, stage: StageName, message: string, result?: RemeshResult) {
     super(message);
     this.name = 'ConformeshError';
     this.code = code;
     this.value = StatusCode[code];
     this.stage = stage;
+    if (result !== undefined) this.result = result;
   }
 
   /** Plain data (for postMessage and JSON). */
@@ -85,11 +91,11 @@ export class ConformeshError extends Error {
     return { code: this.code, value: this.value, stage: this.stage, message: this.message };
   }
 
-  /** Rebuild from toJSON() data (e.g. received from a worker). Unknown codes become InternalError. */
+  /** Rebuild from toJSON() data, with `result` when given (e.g. received from a worker). Unknown codes become InternalError. */
   static fromData(data: Partial<ConformeshErrorData>): ConformeshError {
     const code = isErrorCode(data.code) ? data.code : 'InternalError';
     const stage = isStageName(data.stage) ? data.stage : 'api';
-    return new ConformeshError(code, stage, String(data.message ?? 'unknown error'));
+    return new ConformeshError(code, stage, String(data.message ?? 'unknown error'), data.result);
   }
 }
 

@@ -242,6 +242,7 @@ export interface FlattenReport {
   layoutLengthError: number;
   angleDistortionMean: number;
   angleDistortionMax: number;
+  /** Input triangles inverted or degenerate in uv (exact orientation): a mesh written with `uv` has these; the layout may have none. */
   inputTrianglesInvertedInUv: number;
   areaDistortionMin: number;
   areaDistortionMax: number;
@@ -325,6 +326,15 @@ export interface RemeshOptions {
   maxTriangles?: number;
   maxVertices?: number;
   maxMemoryBytes?: number;
+  /**
+   * The output must have the input's components, boundary loops and Euler characteristic, and no
+   * non-manifold edge or vertex; otherwise remesh throws `ConformeshError` code 'InternalError'
+   * (stage 'report'; the message says what differs). true (default false): the error carries the
+   * defective output as `error.result` (mesh, report, patches), to inspect the defect.
+   */
+  keepDefectiveOutput?: boolean;
+  /** For testing the check above: break the output (one edge gets a third triangle) so that it fails. Default false. */
+  forceTopologyDefect?: boolean;
 }
 
 /** An input corner whose angle is below the bound: the output triangles touching it are exempt. */
@@ -379,6 +389,7 @@ export interface RemeshReport {
   repairMoves: number;
   /** Output triangles predicted from the sizing field before refinement (checked against maxTriangles). */
   estimatedTriangles: number;
+  /** The topology check passed (false only in the result of an error, with keepDefectiveOutput). */
   topologyPreserved: boolean;
   seconds: {
     validate: number;

@@ -5,7 +5,7 @@ import { bindApi, type Conformesh } from './api.js';
 import { loadRaw, type InitOptions } from './loader.js';
 import type { CallRequest, PostFn, WorkerMethod, WorkerRequest } from './protocol.js';
 import { transferablesOf } from './protocol.js';
-import { ConformeshError, type StageName } from './status.js';
+import { ConformeshError, type ConformeshErrorData, type StageName } from './status.js';
 import type { MeshFormat, MeshInfo, ReadMeshResult } from './types.js';
 
 type MethodImpl = (api: Conformesh, args: unknown[], progress: (stage: StageName, fraction: number) => void) => unknown;
@@ -64,8 +64,8 @@ const methods: Record<WorkerMethod, MethodImpl> = {
   version: (api) => api.version,
 };
 
-function errorData(e: unknown) {
-  if (e instanceof ConformeshError) return e.toJSON();
+function errorData(e: unknown): ConformeshErrorData {
+  if (e instanceof ConformeshError) return e.result ? { ...e.toJSON(), result: e.result } : e.toJSON();
   const message = e instanceof Error ? e.message : String(e);
   return new ConformeshError('InternalError', 'api', `worker: ${message}`).toJSON();
 }
@@ -107,7 +107,8 @@ export function createWorkerHandler(): (request: WorkerRequest, post: PostFn) =>
       const value = impl(await getApi(), args, progress);
       post({ id, type: 'result', value }, transferablesOf(value));
     } catch (e) {
-      post({ id, type: 'error', error: errorData(e) }, []);
+      const error = errorData(e);
+      post({ id, type: 'error', error }, transferablesOf(error.result));
     }
   };
 }

@@ -2,9 +2,11 @@
 //
 // Conformal flattening of a disk-like patch (or a disk with holes): writes the input mesh with
 // the planar coordinates as `vt` (OBJ). --json prints the report: iterations,
-// maxCurvatureError, flips, seconds, invertedTriangles, angleDistortionMax,
-// areaDistortionRange (and more). corners: boundary vertices of the outer loop whose 3D angle
-// differs from a straight angle by more than --corner-angle (default 30) keep their angle.
+// maxCurvatureError, flips, seconds, invertedTriangles (of the intrinsic layout),
+// inputTrianglesInvertedInUv (of the file written), angleDistortionMax, areaDistortionRange (and
+// more); without --json a warning on stderr counts the inverted triangles of the file. corners:
+// boundary vertices of the outer loop whose 3D angle differs from a straight angle by more than
+// --corner-angle (default 30) keep their angle.
 #include <cmath>
 #include <cstdio>
 #include <string>
@@ -58,6 +60,7 @@ int runFlatten(const std::vector<std::string>& argv) {
       field("euclideanFlips", std::to_string(R.euclideanFlips));
       field("seconds", jsonNumber(R.seconds));
       field("invertedTriangles", std::to_string(R.invertedTriangles));
+      field("inputTrianglesInvertedInUv", std::to_string(R.inputTrianglesInvertedInUv));
       field("boundaryCrossings", std::to_string(R.boundaryCrossings));
       field("angleDistortionMax", jsonNumber(R.angleDistortionMax));
       field("angleDistortionMean", jsonNumber(R.angleDistortionMean));
@@ -74,6 +77,9 @@ int runFlatten(const std::vector<std::string>& argv) {
                   rr.mesh.vertexCount(), rr.mesh.triangleCount(), R.iterations, R.maxCurvatureError, R.flips, R.seconds,
                   out.c_str());
     }
+    if (R.inputTrianglesInvertedInUv > 0 && !json)
+      std::fprintf(stderr, "conformesh: warning: %d triangles of %s are inverted in uv (vertex uv of input triangles; the layout has %d)\n",
+                   R.inputTrianglesInvertedInUv, out.c_str(), R.invertedTriangles);
     return 0;
   } catch (const Error& e) {
     return reportError(e.status(), json);

@@ -95,7 +95,7 @@ int run(const std::vector<std::string>& argv) {
     Args args = parseArgs(argv,
                           {"-o", "--min-angle", "--edge-length", "--edge-length-rel", "--feature-angle", "--min-feature-length", "--min-patch-width", "--chord-tol",
                            "--max-triangles", "--max-vertices", "--boundary", "--optimize-iterations", "--optimize-tolerance"},
-                          {"--json", "--no-hausdorff", "--no-optimize"});
+                          {"--json", "--no-hausdorff", "--no-optimize", "--keep-defective", "--force-topology-defect"});
     if (args.positional.size() != 1) fail(Code::InvalidArgument, Stage::Api, "remesh needs exactly one input file");
     if (args.has("--edge-length") && args.has("--edge-length-rel"))
       fail(Code::InvalidArgument, Stage::Api, "give --edge-length or --edge-length-rel, not both");
@@ -109,6 +109,8 @@ int run(const std::vector<std::string>& argv) {
     opt.chordTolerance = args.number("--chord-tol", opt.chordTolerance);
     opt.computeHausdorff = !args.has("--no-hausdorff");
     opt.optimize = !args.has("--no-optimize");
+    opt.keepDefectiveOutput = args.has("--keep-defective");
+    opt.forceTopologyDefect = args.has("--force-topology-defect");
     // a count out of range is passed on for remesh to reject; a fractional one is rejected here
     const double iterations = args.number("--optimize-iterations", opt.optimizeIterations);
     if (iterations != std::floor(iterations))
@@ -128,7 +130,8 @@ int run(const std::vector<std::string>& argv) {
     ro.fileName = inPath;
     ReadResult rr = readMesh(readFileBytes(inPath), ro);
     RemeshResult r = remesh(rr.mesh, opt);
-    if (!r.status.ok()) return reportError(r.status, json);
+    // a failed result has a mesh only with --keep-defective: it is written, and still an error
+    if (!r.status.ok() && r.mesh.triangles.empty()) return reportError(r.status, json);
     std::string out = args.get("-o");
     if (!out.empty()) {
       auto dot = out.rfind('.');
@@ -136,6 +139,7 @@ int run(const std::vector<std::string>& argv) {
       if (f == MeshFormat::Auto) fail(Code::InvalidArgument, Stage::Write, "-o: unknown extension (obj, off, stl, ply)");
       writeFileBytes(out, writeMesh(r.mesh, f));
     }
+    if (!r.status.ok()) return reportError(r.status, json);
     if (json) std::printf("%s\n", reportJson(r.report).c_str());
     else printTable(r.report);
     return 0;
@@ -147,7 +151,8 @@ int run(const std::vector<std::string>& argv) {
 const CommandRegistrar registrar({"remesh",
                                   "remesh IN -o OUT [--min-angle D] [--edge-length L | --edge-length-rel R] "
                                   "[--feature-angle D] [--min-feature-length L] [--min-patch-width W] [--chord-tol T] [--boundary free|corners|circle] [--max-triangles N] [--max-vertices N] [--json] "
-                                  "[--no-hausdorff] [--no-optimize] [--optimize-iterations N] [--optimize-tolerance T]",
+                                  "[--no-hausdorff] [--no-optimize] [--optimize-iterations N] [--optimize-tolerance T] [--keep-defective] "
+                                  "[--force-topology-defect]",
                                   "remesh a surface: conformal flattening per patch, planar Delaunay refinement, lift",
                                   run});
 

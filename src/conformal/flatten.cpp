@@ -10,6 +10,7 @@
 #include "conformal/layout.h"
 #include "conformal/triangle_geometry.h"
 #include "core/detmath.h"
+#include "planar/predicates.h"
 
 namespace conformesh {
 
@@ -43,7 +44,8 @@ void distortion(const MeshBuffers& M, const std::vector<double>& uv, FlattenRepo
     const double b = (u2 - a * x2) / y2, d = (v2 - cc * x2) / y2;
     const double E = 0.5 * (a + d), F = 0.5 * (a - d), G = 0.5 * (cc + b), H = 0.5 * (cc - b);
     const double Q = dmath::hypot(E, H), Rr = dmath::hypot(F, G);
-    if (a * d - b * cc <= 0) ++R.inputTrianglesInvertedInUv;
+    // the exact sign of the uv triangle, as written out (the sign of a·d − b·c, rounded, can differ)
+    if (!(planar::orient2d(w[0], w[1], w[2]) > 0)) ++R.inputTrianglesInvertedInUv;
     const double s2 = std::fabs(Q - Rr);
     const double ratio = s2 > 0 ? (Q + Rr) / s2 : 1e300;
     if (!std::isfinite(ratio)) continue;

@@ -53,7 +53,10 @@ struct FlattenReport {
   //! to the triangle of its vertices' uv. An estimate: the true map is projective per overlay
   //! cell, so input triangles crossed by flips are not mapped affinely.
   double angleDistortionMean = 1.0, angleDistortionMax = 1.0;
-  int inputTrianglesInvertedInUv = 0;  //!< input triangles whose vertex uv triangle is inverted
+  //! Input triangles whose vertex uv triangle is inverted or degenerate (exact orientation of the
+  //! uv, the triangles a mesh written with this uv has): the uv is only an estimate of the map,
+  //! exact on the overlay, so a valid layout can still leave a few inverted.
+  int inputTrianglesInvertedInUv = 0;
   //! Area scale e^{2u} (u normalized so the flat area equals the 3D area): min, max, max/min.
   double areaDistortionMin = 1.0, areaDistortionMax = 1.0, areaDistortionRange = 1.0;
   size_t overlayCrossings = 0;        //!< input edge / final edge crossings in the overlay

@@ -1,5 +1,6 @@
 #include "quality/metrics.h"
 #include "core/detmath.h"
+#include "core/triangle_corner.h"
 
 #include <algorithm>
 #include <cmath>
@@ -339,6 +340,13 @@ TopologySummary topologyOf(const MeshBuffers& mesh, const std::vector<EdgeRef>& 
   }
   UnionFind loops(nv);
   std::vector<char> onBoundary(nv, 0);
+  // fans: the corners (3f + k) at a vertex joined across two-triangle edges
+  UnionFind fans(mesh.triangles.size());
+  const auto distinct = [&](uint32_t f) {
+    const uint32_t* tri = &mesh.triangles[3 * size_t(f)];
+    return tri[0] != tri[1] && tri[1] != tri[2] && tri[2] != tri[0];
+  };
+  const auto corner = [&](uint32_t f, uint32_t v) { return 3 * f + uint32_t(cornerOf(&mesh.triangles[3 * size_t(f)], v)); };
   for (size_t i = 0; i < refs.size();) {
     size_t j = i;
     while (j < refs.size() && refs[j].a == refs[i].a && refs[j].b == refs[i].b) ++j;
@@ -349,11 +357,19 @@ TopologySummary topologyOf(const MeshBuffers& mesh, const std::vector<EdgeRef>& 
       loops.unite(refs[i].a, refs[i].b);
     } else if (j - i > 2) {
       ++t.nonManifoldEdges;
+    } else if (distinct(refs[i].face) && distinct(refs[i + 1].face)) {
+      fans.unite(corner(refs[i].face, refs[i].a), corner(refs[i + 1].face, refs[i].a));
+      fans.unite(corner(refs[i].face, refs[i].b), corner(refs[i + 1].face, refs[i].b));
     }
     i = j;
   }
   for (size_t v = 0; v < nv; ++v)
     if (onBoundary[v] && loops.find(uint32_t(v)) == v) ++t.boundaryLoops;
+  std::vector<uint32_t> fanCount(nv, 0);
+  for (uint32_t f = 0; f < mesh.triangleCount(); ++f)
+    if (triangleValid(mesh, f) && distinct(f))
+      for (uint32_t c = 3 * f; c < 3 * f + 3; ++c)
+        if (fans.find(c) == c && ++fanCount[mesh.triangles[c]] == 2) ++t.nonManifoldVertices;
   t.euler = (long long)t.vertices - (long long)t.edges + (long long)t.faces;
   if (t.nonManifoldEdges == 0) {
     long long twice = 2 * (long long)t.components - t.euler - (long long)t.boundaryLoops;

@@ -58,7 +58,9 @@ EdgeStats edgeStats(const MeshBuffers& mesh);
 //! Combinatorial topology from the index arrays alone.
 //! boundaryLoops counts connected components of the boundary-edge graph (two loops pinched at a
 //! vertex count as one). genus = (2·components − χ − boundaryLoops) / 2, only meaningful when
-//! nonManifoldEdges == 0 (else genus is −1).
+//! nonManifoldEdges == 0 (else genus is −1). nonManifoldVertices: vertices whose triangles form
+//! more than one fan, fans joined across edges of exactly two triangles (bow-ties; the ends of a
+//! non-manifold edge usually count too); triangles that repeat a vertex are left out of the fans.
 struct TopologySummary {
   size_t vertices = 0;  //!< referenced vertices
   size_t edges = 0;
@@ -67,6 +69,7 @@ struct TopologySummary {
   size_t boundaryEdges = 0;
   size_t boundaryLoops = 0;
   size_t nonManifoldEdges = 0;  //!< edges with more than two faces
+  size_t nonManifoldVertices = 0;
   long long euler = 0;          //!< V − E + F
   long long genus = -1;
 };

@@ -1297,6 +1297,38 @@ bool minAngleBelow(const MeshBuffers& m, size_t t, double boundDeg, double cosBo
   return above ? false : triangleMinAngle(m, t) < boundDeg;
 }
 
+//! How the output's topology differs from the input's ("Euler characteristic 3 vs 2, 1
+//! non-manifold edge"), or "" when it has the input's components, boundary loops and Euler
+//! characteristic and no non-manifold edge or vertex.
+std::string topologyDifference(const quality::TopologySummary& out, const quality::TopologySummary& in) {
+  std::string s;
+  const auto add = [&](const std::string& what) { s += (s.empty() ? "" : ", ") + what; };
+  const auto count = [](size_t n, const char* one, const char* many) { return std::to_string(n) + " " + (n == 1 ? one : many); };
+  if (out.components != in.components) add(std::to_string(out.components) + " components vs " + std::to_string(in.components));
+  if (out.boundaryLoops != in.boundaryLoops)
+    add(std::to_string(out.boundaryLoops) + " boundary loops vs " + std::to_string(in.boundaryLoops));
+  if (out.euler != in.euler) add("Euler characteristic " + std::to_string(out.euler) + " vs " + std::to_string(in.euler));
+  if (out.genus >= 0 && in.genus >= 0 && out.genus != in.genus)
+    add("genus " + std::to_string(out.genus) + " vs " + std::to_string(in.genus));
+  if (out.nonManifoldEdges > 0) add(count(out.nonManifoldEdges, "non-manifold edge", "non-manifold edges"));
+  if (out.nonManifoldVertices > 0) add(count(out.nonManifoldVertices, "non-manifold vertex", "non-manifold vertices"));
+  return s;
+}
+
+//! RemeshOptions::forceTopologyDefect: a flipped copy (b, a, c') of triangle 0 (a, b, c), c' a new
+//! vertex at c, so edge ab has three triangles. The per-vertex and per-triangle arrays grow with it.
+void addNonManifoldEdge(MeshBuffers& m, std::vector<uint32_t>& vertexFace, std::vector<uint8_t>& exemptVertex,
+                        std::vector<uint32_t>& triPatch) {
+  if (m.triangles.empty()) return;
+  const uint32_t a = m.triangles[0], b = m.triangles[1], c = m.triangles[2], copy = uint32_t(m.vertexCount());
+  for (int k = 0; k < 3; ++k) m.positions.push_back(m.positions[3 * size_t(c) + k]);
+  if (!m.uvs.empty()) m.uvs.insert(m.uvs.end(), {m.uvs[2 * size_t(c)], m.uvs[2 * size_t(c) + 1]});
+  m.triangles.insert(m.triangles.end(), {b, a, copy});
+  vertexFace.push_back(vertexFace[c]);
+  exemptVertex.push_back(0);
+  triPatch.push_back(triPatch[0]);
+}
+
 RemeshResult Pipeline::run(const MeshBuffers& input) {
   RemeshResult res;
   auto t0 = std::chrono::steady_clock::now(), tStart = t0;
@@ -1608,6 +1640,7 @@ RemeshResult Pipeline::run(const MeshBuffers& input) {
       rep_.warnings.push_back("repair stopped at its cap of " + std::to_string(kRepairRounds) + " passes with " +
                               std::to_string(rs.left) + " triangles below the bound");
   }
+  if (opt_.forceTopologyDefect) addNonManifoldEdge(out, vertexFace, exemptVertex, triPatch);
   rep_.seconds.lift = liftSeconds_;
   rep_.seconds.refine -= liftSeconds_ + optimizeSeconds_;
   rep_.seconds.optimize = optimizeSeconds_;
@@ -1665,8 +1698,14 @@ RemeshResult Pipeline::run(const MeshBuffers& input) {
   rep_.meanEdgeLength = et.edges.meanLength;
   rep_.delaunayFraction = et.edges.delaunayFraction;
   const quality::TopologySummary ti = quality::topologySummary(in), &to = et.topology;
-  rep_.topologyPreserved = ti.components == to.components && ti.boundaryLoops == to.boundaryLoops &&
-                           ti.genus == to.genus && to.nonManifoldEdges == 0;
+  // a broken mesh is never a success: a defect here is a bug of the stitch or the repair
+  const std::string defect = topologyDifference(to, ti);
+  rep_.topologyPreserved = defect.empty();
+  Status topologyStatus;
+  if (!defect.empty()) {
+    topologyStatus = Status{Code::InternalError, Stage::Report, "output topology differs from the input: " + defect};
+    if (!opt_.keepDefectiveOutput) fail(topologyStatus.code, topologyStatus.stage, topologyStatus.message);
+  }
   // feature curves kept: every pair of consecutive samples is an output edge
   // (vertex -> neighbours in compressed rows: a hash set of every edge cost 5x more here)
   std::vector<uint32_t> nbrStart(out.vertexCount() + 1, 0), nbr(2 * out.triangles.size());
@@ -1726,6 +1765,7 @@ RemeshResult Pipeline::run(const MeshBuffers& input) {
   checkCancel(Stage::Report, 1.0);
   rep_.seconds.report = elapsed(t0);
   rep_.seconds.total = std::chrono::duration<double>(std::chrono::steady_clock::now() - tStart).count();
+  res.status = topologyStatus;
   res.mesh = std::move(out);
   res.report = rep_;
   if (opt_.returnPatches) {

@@ -92,6 +92,14 @@ struct RemeshOptions {
   size_t maxVertices = size_t(16) << 20;
   size_t maxTriangles = size_t(32) << 20;
   double maxMemoryBytes = 3.0 * double(size_t(1) << 30);
+  //! The output must have the input's components, boundary loops and Euler characteristic, and no
+  //! non-manifold edge or vertex; otherwise remesh fails with InternalError (stage Report; the
+  //! message says what differs) and an empty mesh. true (default false): the mesh, report and
+  //! patches come back along with that status, to inspect the defect.
+  bool keepDefectiveOutput = false;
+  //! For testing the check above: break the stitched output (a flipped copy of its first triangle
+  //! on a new vertex, so one edge has three triangles) so that the check fails. Default false.
+  bool forceTopologyDefect = false;
 };
 
 //! An input corner where the input's own feature or boundary curves make a wedge below the bound
@@ -135,7 +143,7 @@ struct RemeshReport {
   size_t patchSplitsForScale = 0;
   int conformingRounds = 0, certificateRounds = 0;
   double estimatedTriangles = 0;  //!< output size predicted before refinement (remesh/limits.h)
-  bool topologyPreserved = false;
+  bool topologyPreserved = false;  //!< the topology check passed (false only with keepDefectiveOutput)
   StageSeconds seconds;
   std::vector<std::string> warnings;
 };
@@ -152,7 +160,7 @@ struct RemeshPatch {
 };
 
 struct RemeshResult {
-  Status status;  //!< Ok, or the failure (mesh then empty)
+  Status status;  //!< Ok, or the failure (mesh then empty, but with keepDefectiveOutput after a failed topology check)
   MeshBuffers mesh;
   RemeshReport report;
   std::vector<RemeshPatch> patches;        //!< with RemeshOptions::returnPatches
@@ -161,8 +169,9 @@ struct RemeshResult {
 
 //! Remesh a triangle mesh. Never throws: failures come back in `status` (codes from the input
 //! validation, InvalidArgument for bad options, IterationLimit when a cap is hit, Cancelled,
-//! NumericalFailure from the flattening). Progress goes through every stage; returning false
-//! cancels.
+//! NumericalFailure from the flattening, InternalError when the output's topology differs from
+//! the input's: see RemeshOptions::keepDefectiveOutput). Progress goes through every stage;
+//! returning false cancels.
 RemeshResult remesh(const MeshBuffers& input, const RemeshOptions& options = {}, ProgressFn progress = {});
 
 }  // namespace conformesh

@@ -6,8 +6,9 @@
 //   - the status is a code of the table, with a message when it is not Ok;
 //   - an Ok result is non-empty, finite, every index in range, within maxTriangles/maxVertices,
 //     with a report matching the mesh.
-// With FUZZ_STRICT=1 in the environment, also: no InternalError, and an Ok output keeps the
-// input's topology (report.topologyPreserved). Off by default: the meshing loop still has known
+// With FUZZ_STRICT=1 in the environment, also: no InternalError (remesh's status for an output
+// whose topology differs from the input's), and an Ok output keeps the input's topology
+// (report.topologyPreserved). Off by default: the meshing loop still has known
 // open bugs of that kind (tests/fuzz/README.md), and the default run is for crashes, hangs and
 // sanitizer reports.
 #include <cmath>

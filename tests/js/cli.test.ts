@@ -1,7 +1,7 @@
 // The package CLI (dist/cli.js, the `conformesh` bin) running the WASM module in Node: output,
 // exit codes and JSON shapes; and, when the native CLI has the same command, identical output.
 import { execFileSync, spawnSync } from 'node:child_process';
-import { existsSync, readFileSync } from 'node:fs';
+import { existsSync, readFileSync, rmSync } from 'node:fs';
 import { join } from 'node:path';
 import { fileURLToPath } from 'node:url';
 import { describe, expect, it } from 'vitest';
@@ -147,6 +147,71 @@ describe('package CLI: refine2d, flatten, remesh', () => {
     expect(readFileSync(out('wasm')).equals(readFileSync(out('native')))).toBe(true);
     const err = ['flatten', data('spot.obj'), '-o', join(tmp, 'x.obj'), '--json'];
     expect(run(err).stdout).toBe(spawnSync(native, err, { encoding: 'utf8' }).stdout);
+  });
+
+  // the OBJ's uv triangles of negative or zero signed area
+  const invertedUvTriangles = (file: string) => {
+    const vt: number[][] = [];
+    let inverted = 0;
+    for (const line of readFileSync(file, 'utf8').split('\n')) {
+      const w = line.split(' ');
+      if (w[0] === 'vt') vt.push([Number(w[1]), Number(w[2])]);
+      if (w[0] !== 'f') continue;
+      const [a, b, c] = w.slice(1).map((x) => vt[Number(x.split('/')[1]) - 1]!) as [number[], number[], number[]];
+      inverted += (b[0]! - a[0]!) * (c[1]! - a[1]!) - (b[1]! - a[1]!) * (c[0]! - a[0]!) > 0 ? 0 : 1;
+    }
+    return inverted;
+  };
+
+  it('flatten: the report counts the inverted uv triangles of the file it writes (stanford-bunny, free boundary)', () => {
+    const out = join(tmp, 'cli-flat-bunny.obj');
+    const args = ['flatten', data('stanford-bunny.obj'), '--boundary', 'free', '-o', out];
+    const json = run([...args, '--json']);
+    expect(json.status).toBe(0);
+    const report = JSON.parse(json.stdout);
+    expect(report.invertedTriangles).toBe(0); // the intrinsic layout
+    expect(report.inputTrianglesInvertedInUv).toBe(invertedUvTriangles(out));
+    const text = run(args);
+    expect(text.status).toBe(0);
+    const warning = `conformesh: warning: ${report.inputTrianglesInvertedInUv} triangles of ${out} are inverted in uv`;
+    expect(text.stderr.startsWith(warning)).toBe(report.inputTrianglesInvertedInUv > 0);
+    if (nativeHas('flatten')) {
+      for (const a of [[...args, '--json'], args]) {
+        const nat = spawnSync(native, a, { encoding: 'utf8' });
+        const wasm = run(a);
+        const strip = (t: string) => t.replace(/"seconds":[^,}]*/g, '').replace(/, [0-9.]+ s ->/, '');
+        expect({ out: strip(nat.stdout), err: nat.stderr, status: nat.status }).toEqual({ out: strip(wasm.stdout), err: wasm.stderr, status: wasm.status });
+        expect(invertedUvTriangles(out)).toBe(report.inputTrianglesInvertedInUv);
+      }
+    }
+  });
+
+  it('remesh: a broken output exits 1 with the message, writes no file; --keep-defective writes it and still exits 1', () => {
+    const input = join(root, 'web', 'samples', 'icosphere.obj');
+    const out = join(tmp, 'cli-defect.obj');
+    const args = ['remesh', input, '--edge-length-rel', '0.1', '--no-hausdorff', '--force-topology-defect', '-o', out];
+    rmSync(out, { force: true });
+    const broken = run(args);
+    expect(broken.status).toBe(1);
+    expect(broken.stderr).toMatch(/^conformesh: output topology differs from the input: .*1 non-manifold edge.* \(InternalError, stage report\)$/m);
+    expect(broken.stdout).toBe('');
+    expect(existsSync(out)).toBe(false);
+    const kept = run([...args, '--keep-defective']);
+    expect(kept.status).toBe(1);
+    expect(kept.stderr).toBe(broken.stderr);
+    expect(existsSync(out)).toBe(true);
+    const json = run([...args, '--json']);
+    expect(json.status).toBe(1);
+    expect(JSON.parse(json.stdout).error).toMatchObject({ code: 18, name: 'InternalError', stage: 'report' });
+    if (nativeHas('remesh')) {
+      for (const a of [args, [...args, '--keep-defective'], [...args, '--json']]) {
+        rmSync(out, { force: true });
+        const nat = spawnSync(native, a, { encoding: 'utf8' });
+        expect(existsSync(out)).toBe(a.includes('--keep-defective'));
+        const wasm = run(a);
+        expect({ out: nat.stdout, err: nat.stderr, status: nat.status }).toEqual({ out: wasm.stdout, err: wasm.stderr, status: wasm.status });
+      }
+    }
   });
 
   it.skipIf(!nativeHas('remesh'))('remesh --json: the native report, the same values but the timings', () => {

@@ -1,7 +1,7 @@
 // remesh: the output's angles computed here in JS (3D) against the bound and the reported exempt
 // corners, progress and cancel (direct and in workers), worker vs direct, heap flat.
 import { afterAll, describe, expect, it } from 'vitest';
-import { createRemesher, init, remesh, type Mesh, type ProgressEvent } from '../../dist/index.js';
+import { ConformeshError, createRemesher, init, remesh, type Mesh, type ProgressEvent } from '../../dist/index.js';
 
 /** An axis-aligned cube [0,1]^3, each face an n×n grid of quads split in two, outward oriented. */
 function cube(n: number): Mesh {
@@ -111,6 +111,39 @@ describe('remesh', () => {
     expect(() => cm.remesh({ positions: [], triangles: [] })).toThrow(expect.objectContaining({ code: 'EmptyMesh' }));
   });
 
+  it('a broken output is an error: InternalError (stage report) saying what differs; keepDefectiveOutput attaches it', async () => {
+    const cm = await init();
+    const good = cm.remesh(small, fast);
+    let err: unknown;
+    try {
+      cm.remesh(small, { ...fast, forceTopologyDefect: true });
+    } catch (e) {
+      err = e;
+    }
+    expect(err).toBeInstanceOf(ConformeshError);
+    const e = err as ConformeshError;
+    expect([e.code, e.stage]).toEqual(['InternalError', 'report']);
+    expect(e.message).toMatch(/^output topology differs from the input: .*1 non-manifold edge\b/);
+    expect(e.result).toBeUndefined();
+    try {
+      cm.remesh(small, { ...fast, forceTopologyDefect: true, keepDefectiveOutput: true });
+    } catch (x) {
+      err = x;
+    }
+    const kept = err as ConformeshError;
+    expect(kept).not.toBe(e);
+    expect([kept.code, kept.message]).toEqual([e.code, e.message]);
+    expect(kept.result!.report.topologyPreserved).toBe(false);
+    // the good output and one flipped copy of its first triangle on a new vertex
+    expect(kept.result!.mesh.triangles.length).toBe(good.mesh.triangles.length + 3);
+    expect(kept.result!.mesh.positions.length).toBe(good.mesh.positions.length + 3);
+    expect(cm.meshInfo(kept.result!.mesh).nonManifoldEdges).toBe(1);
+    // asked for, but no defect: the same result as without the option
+    const same = cm.remesh(small, { ...fast, keepDefectiveOutput: true });
+    expect(same.mesh.positions).toEqual(good.mesh.positions);
+    expect(same.mesh.triangles).toEqual(good.mesh.triangles);
+  });
+
   it('keeps the heap flat (±1 %) over 100 calls', async () => {
     const cm = await init();
     cm.remesh(small, fast);
@@ -163,6 +196,17 @@ describe('remesh in workers', () => {
       expect(r.report.topologyPreserved).toBe(true);
     }
     await expect(remesher.remesh(small, { ...fast, boundary: 'disk' as 'free' })).rejects.toMatchObject({ code: 'InvalidArgument' });
+  });
+
+  it('a broken output rejects with InternalError, the defective result attached when asked for', async () => {
+    const call = remesher.remesh(small, { ...fast, forceTopologyDefect: true, keepDefectiveOutput: true });
+    await expect(call).rejects.toMatchObject({ code: 'InternalError', stage: 'report' });
+    const e = (await call.catch((x: unknown) => x)) as ConformeshError;
+    expect(e).toBeInstanceOf(ConformeshError);
+    expect(e.result!.mesh.triangles).toBeInstanceOf(Uint32Array);
+    expect(e.result!.report.topologyPreserved).toBe(false);
+    const plain = (await remesher.remesh(small, { ...fast, forceTopologyDefect: true }).catch((x: unknown) => x)) as ConformeshError;
+    expect([plain.code, plain.result]).toEqual(['InternalError', undefined]);
   });
 
   it('cancel rejects with Cancelled at once', async () => {

@@ -5,6 +5,7 @@
 #include <random>
 
 #include "conformesh.h"
+#include "planar/predicates.h"
 #include "test_meshes.h"
 
 #include <fstream>
@@ -357,4 +358,28 @@ TEST_CASE("flatten data: alligator circle needs more range than doubles hold; fr
   }
   const FlatPatch P = flattenFreeValid(M, 16);
   CHECK(P.report.areaDistortionRange < 1e6);
+}
+
+TEST_CASE("flatten data: inputTrianglesInvertedInUv counts the inverted uv triangles of the OBJ written with the uv") {
+  // bunny's free map leaves a few input triangles inverted in vertex uv (the layout has none):
+  // the count must be that of the file, read back, with the exact orientation of its uv
+  MeshBuffers M = readData("stanford-bunny.obj");
+  FlattenOptions o;
+  o.boundary = BoundaryCondition::Free;
+  o.pullback = false;
+  const FlatPatch P = flatten(M, o);
+  CHECK(P.report.invertedTriangles == 0);
+  M.uvs = P.uv;
+  ReadOptions ro;
+  ro.fileName = "written.obj";
+  const MeshBuffers W = readMesh(writeMesh(M, MeshFormat::Obj), ro).mesh;
+  REQUIRE(W.uvs.size() == 2 * W.vertexCount());
+  REQUIRE(W.triangleCount() == M.triangleCount());
+  int inverted = 0;
+  for (size_t f = 0; f < W.triangleCount(); ++f) {
+    const uint32_t* t = &W.triangles[3 * f];
+    inverted += !(planar::orient2d(&W.uvs[2 * t[0]], &W.uvs[2 * t[1]], &W.uvs[2 * t[2]]) > 0);
+  }
+  MESSAGE("stanford-bunny free: " << inverted << " input triangles inverted in uv");
+  CHECK(inverted == P.report.inputTrianglesInvertedInUv);
 }

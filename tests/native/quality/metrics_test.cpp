@@ -180,6 +180,25 @@ TEST_CASE("topology: disk, closed cube, two components, a non-manifold fin") {
   TopologySummary ft = topologySummary(fin);
   CHECK(ft.nonManifoldEdges == 1);
   CHECK(ft.genus == -1);
+  CHECK(ft.nonManifoldVertices == 2);  // the fin's ends: three fans each
+}
+
+TEST_CASE("topology: non-manifold vertices are bow-ties, none on manifold meshes") {
+  CHECK(topologySummary(grid(5, [](double, double) { return 0.0; })).nonManifoldVertices == 0);
+  CHECK(topologySummary(cube()).nonManifoldVertices == 0);
+  // two triangles touching at vertex 0 only
+  MeshBuffers bowtie;
+  bowtie.positions = {0, 0, 0, 1, 0, 0, 0, 1, 0, -1, 0, 0, 0, -1, 0};
+  bowtie.triangles = {0, 1, 2, 0, 3, 4};
+  const TopologySummary b = topologySummary(bowtie);
+  CHECK(b.nonManifoldVertices == 1);
+  CHECK(b.nonManifoldEdges == 0);
+  // two cubes sharing one corner (the second cube's vertex 0 is the first's vertex 7, at (1, 1, 1))
+  MeshBuffers c = cube(), two = c;
+  for (size_t i = 0; i < c.positions.size(); ++i) two.positions.push_back(c.positions[i] + 1.0);
+  for (uint32_t t : c.triangles) two.triangles.push_back(t == 0 ? 7 : t + 8);
+  CHECK(topologySummary(two).nonManifoldVertices == 1);
+  CHECK(edgeStatsAndTopology(two).topology.nonManifoldVertices == 1);
 }
 
 TEST_CASE("closest point on a triangle: regions and a degenerate triangle") {
