@@ -13,8 +13,8 @@
 //     (turn below continuationDeg, best pairs first), so the zigzags of noise fall apart into
 //     short pieces;
 //   * length: against the output's scale (minLength, about twice the target edge length), a
-//     chain shorter than that carries nothing the output can show unless it stands out strongly
-//     or bridges two curves.
+//     chain shorter than that is kept only as a bridge: it stands out and each of its free ends
+//     touches the boundary or another kept or strongly standing-out chain.
 // Canny's hysteresis (1986) along chains; the contrast test follows the neighbourhood-relative
 // sharpness of Hubeli & Gross (2001, Multiresolution feature extraction for unstructured meshes).
 #pragma once
@@ -29,8 +29,8 @@ namespace conformesh::features {
 struct CreaseOptions {
   //! Candidates: interior edges whose face normals differ by more than this (degrees).
   double featureAngleDeg = 40.0;
-  //! Chains (absolute length) below this are kept only when they stand out strongly or bridge
-  //! two other curves. 0 keeps every candidate (no chain tests at all).
+  //! Chains (absolute length) below this are kept only as bridges (see above). 0 keeps every
+  //! candidate (no chain tests at all).
   double minLength = 0.0;
   //! Two candidates at a vertex continue one chain when the polyline turns by less (degrees).
   double continuationDeg = 45.0;
