@@ -1,11 +1,11 @@
 #include "quality/metrics.h"
 #include "core/detmath.h"
 #include "core/triangle_corner.h"
+#include "core/union_find.h"
 
 #include <algorithm>
 #include <cmath>
 #include <limits>
-#include <numeric>
 
 namespace conformesh::quality {
 
@@ -98,20 +98,6 @@ bool oppositeSurelyNotObtuse(const MeshBuffers& m, const EdgeRef& r) {
   const double uu = dot(u, u), vv = dot(v, v), cc = dot(cross(u, v), cross(u, v));
   return dot(u, v) >= 0 && uu >= 1e-200 && uu <= 1e200 && vv >= 1e-200 && vv <= 1e200 && cc > 0 && cc <= 1e300;
 }
-
-struct UnionFind {
-  std::vector<uint32_t> parent;
-  explicit UnionFind(size_t n) : parent(n) { std::iota(parent.begin(), parent.end(), 0u); }
-  uint32_t find(uint32_t x) {
-    while (parent[x] != x) x = parent[x] = parent[parent[x]];
-    return x;
-  }
-  void unite(uint32_t a, uint32_t b) {
-    a = find(a);
-    b = find(b);
-    if (a != b) parent[std::max(a, b)] = std::min(a, b);
-  }
-};
 
 Vec3 faceNormal(const MeshBuffers& m, uint32_t f) {
   const uint32_t* t = &m.triangles[3 * size_t(f)];
