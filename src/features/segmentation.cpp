@@ -441,11 +441,18 @@ bool patchesAreDisks(const EdgeGraph& g, const Segmentation& seg, const std::vec
 }
 
 // The safety net after moving cuts (curves rebuilt): every patch is still a disk, else the
-// edge kinds are put back as they were. Returns whether the moves are kept.
+// edge kinds are put back as they were. Returns whether the moves are kept. Every patch was a
+// disk before, and one beside no edge whose kind changed has the same faces and borders as
+// then: only the patches beside a changed edge are checked (not every patch at every split).
 bool keepCutsIfAllDisks(const EdgeGraph& g, Segmentation& seg, const std::vector<EdgeKind>& original) {
-  std::vector<uint32_t> all(seg.patches.size());
-  for (size_t p = 0; p < all.size(); ++p) all[p] = uint32_t(p);
-  if (!patchesAreDisks(g, seg, all)) {
+  std::vector<uint32_t> touched;
+  for (uint32_t e = 0; e < g.edgeCount(); ++e)
+    if (seg.edgeKind[e] != original[e])
+      for (uint32_t f : g.edgeFaces[e])
+        if (f != kNone) touched.push_back(seg.facePatch[f]);
+  std::sort(touched.begin(), touched.end());
+  touched.erase(std::unique(touched.begin(), touched.end()), touched.end());
+  if (!patchesAreDisks(g, seg, touched)) {
     seg.edgeKind = original;
     rebuildCurves(g, seg);
     return false;
@@ -456,8 +463,10 @@ bool keepCutsIfAllDisks(const EdgeGraph& g, Segmentation& seg, const std::vector
 }
 }  // namespace
 
-uint32_t improveCutJunctions(const EdgeGraph& g, Segmentation& seg, double scale) {
+uint32_t improveCutJunctions(const EdgeGraph& g, Segmentation& seg, double scale, const std::vector<uint32_t>& region) {
   if (!(scale > 0)) return 0;
+  std::vector<uint8_t> inRegion(g.faceCount, region.empty() ? 1 : 0);
+  for (uint32_t f : region) inRegion[f] = 1;
   const double kAim = 60.0 * kPi / 180.0;   // ends meeting another curve below this are rerouted
   const double kGain = 5.0 * kPi / 180.0;   // a reroute must improve the angle by this much
   const int kPasses = 8;                     // one reroute per patch and pass
@@ -495,6 +504,7 @@ uint32_t improveCutJunctions(const EdgeGraph& g, Segmentation& seg, double scale
       const Curve& c = seg.curves[ci];
       if (c.kind != EdgeKind::Cut || c.patches[0] == kNone || c.patches[1] == kNone || c.patches[0] == c.patches[1])
         continue;
+      if (!inRegion[g.edgeFaces[c.edges[0]][0]]) continue;  // a cut has faces on both sides
       const uint32_t A = c.patches[0], B = c.patches[1];
       for (int end = 0; end < 2; ++end) {
         // one reroute per patch and pass (patch ids are rebuilt between passes)
@@ -942,6 +952,7 @@ Segmentation segment(const EdgeGraph& g, const FeatureOptions& options, const Pr
 
 bool splitPatch(const EdgeGraph& g, Segmentation& seg, uint32_t p, uint32_t parts) {
   if (p >= seg.patches.size() || seg.patches[p].size() < 2) return false;
+  const std::vector<uint32_t> region = seg.patches[p];  // the new cuts and their ends lie in it
   Cutter cutter(g, seg, 1u << 30);
   std::vector<std::vector<uint32_t>> done, todo;
   cutter.partition(seg.patches[p], std::max<uint32_t>(2, parts), done, todo);
@@ -952,7 +963,7 @@ bool splitPatch(const EdgeGraph& g, Segmentation& seg, uint32_t p, uint32_t part
     cutter.toDisks(r, count);
   }
   rebuildCurves(g, seg);
-  improveCutJunctions(g, seg, seg.junctionScale);
+  improveCutJunctions(g, seg, seg.junctionScale, region);
   straightenCutEars(g, seg);
   return true;
 }

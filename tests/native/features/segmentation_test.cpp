@@ -478,3 +478,34 @@ TEST_CASE("features: improveCutJunctions' reroutes add no cut hairpins (fertilit
     checkPatchesAreDisks(g, after);
   }
 }
+
+TEST_CASE("features: improveCutJunctions with a region reroutes only the cuts beside it (fertility)") {
+  std::ifstream in(std::string(CONFORMESH_DATA_DIR) + "/fertility.off", std::ios::binary);
+  REQUIRE(in);
+  const std::vector<uint8_t> bytes((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  const EdgeGraph g = buildEdgeGraph(readMesh(bytes).mesh);
+  const Segmentation s0 = segment(g, FeatureOptions{});  // junctionScale 0: no reroutes
+  const double scale = 0.01 * boundingBoxDiagonal(g);
+  // the region: the patch beside the first cut; cuts may move within it and the patches across
+  // its cuts, nowhere else
+  uint32_t region = kNone;
+  for (const Curve& c : s0.curves)
+    if (c.kind == EdgeKind::Cut && region == kNone) region = c.patches[0];
+  REQUIRE(region != kNone);
+  std::set<uint32_t> allowed{region};
+  for (const Curve& c : s0.curves)
+    if (c.kind == EdgeKind::Cut && (c.patches[0] == region || c.patches[1] == region)) allowed.insert({c.patches[0], c.patches[1]});
+  Segmentation all = s0, local = s0;
+  const uint32_t everywhere = improveCutJunctions(g, all, scale);
+  const uint32_t here = improveCutJunctions(g, local, scale, s0.patches[region]);
+  MESSAGE("rerouted: " << everywhere << " everywhere, " << here << " beside patch " << region << " of " << s0.patches.size());
+  CHECK(everywhere > here);
+  uint32_t changed = 0;
+  for (uint32_t e = 0; e < g.edgeCount(); ++e) {
+    if (local.edgeKind[e] == s0.edgeKind[e]) continue;
+    ++changed;
+    for (uint32_t f : g.edgeFaces[e]) CHECK(allowed.count(s0.facePatch[f]) == 1);
+  }
+  CHECK((here == 0) == (changed == 0));
+  checkPatchesAreDisks(g, local);
+}
