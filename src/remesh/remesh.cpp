@@ -354,9 +354,14 @@ void Pipeline::flattenPatches() {
     std::sort(faces.begin(), faces.end());
     return faces;
   };
+  // each round flattens what is new and splits at most one patch: the rounds are capped by the
+  // patches the segmentation may make (a split that undoes another would otherwise cycle)
+  const uint32_t maxPatches = F::FeatureOptions{}.maxPatches;
   for (int round = 0;; ++round) {
-    if (round > 64 + int(g_.faceCount))
-      fail(Code::IterationLimit, Stage::Flatten, "splitting patches for their scale factor did not settle");
+    if (round > 64 + 2 * int(maxPatches) || seg_.patches.size() > maxPatches)
+      fail(Code::IterationLimit, Stage::Flatten,
+           "splitting patches for their scale factor did not settle (" + std::to_string(seg_.patches.size()) + " patches after " +
+               std::to_string(round) + " rounds)");
     auto mask = seg_.curveMask();
     bool split = false;
     for (uint32_t p = 0; p < seg_.patches.size() && !split; ++p) {
