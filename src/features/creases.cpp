@@ -50,8 +50,9 @@ Creases detectCreases(const EdgeGraph& g, const CreaseOptions& o) {
     fail(Code::InvalidArgument, Stage::Segment, "featureAngle must be in [0, 180] degrees");
   if (!(o.minLength >= 0 && o.minLength < INFINITY))
     fail(Code::InvalidArgument, Stage::Segment, "minFeatureLength must be finite and >= 0");
-  if (!(o.continuationDeg >= 0 && o.continuationDeg <= 180) || !(o.contrast >= 1) || !(o.strongContrast >= o.contrast))
-    fail(Code::InvalidArgument, Stage::Segment, "crease continuation in [0, 180], 1 <= contrast <= strongContrast");
+  if (!(o.continuationDeg >= 0 && o.continuationDeg <= 180) || !(o.contrast >= 1) || !(o.strongContrast >= o.contrast) ||
+      !(o.lineLengthFactor >= 1))
+    fail(Code::InvalidArgument, Stage::Segment, "crease continuation in [0, 180], 1 <= contrast <= strongContrast, lineLengthFactor >= 1");
   const uint32_t ne = g.edgeCount();
   Creases out;
   out.edge.assign(ne, 0);
@@ -107,9 +108,11 @@ Creases detectCreases(const EdgeGraph& g, const CreaseOptions& o) {
     ++out.chains;
     const ChainStats& s = stats[e];
     // a long chain that mostly stands out (three edges at least: one or two edges of a coarse
-    // tessellation are no evidence of a line), or one that mostly stands out strongly
+    // tessellation are no evidence of a line), or one that mostly stands out strongly, or a
+    // line: many edges continuing each other straight over many output edges
     const bool distinct = s.distinct >= 0.5 * s.length, strong = s.strong >= 0.5 * s.length;
-    keptChain[e] = s.length >= o.minLength && ((distinct && s.edges >= 3) || strong);
+    const bool line = s.length >= o.lineLengthFactor * o.minLength && s.edges >= o.lineEdges;
+    keptChain[e] = s.length >= o.minLength && ((distinct && s.edges >= 3) || strong || line);
   }
   // bridges: a short chain that mostly stands out and whose every free end touches another
   // kept or strongly standing-out chain, or the boundary, closes a region instead of dangling

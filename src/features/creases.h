@@ -14,7 +14,8 @@
 //     short pieces;
 //   * length: against the output's scale (minLength, about twice the target edge length), a
 //     chain shorter than that is kept only as a bridge: it stands out and each of its free ends
-//     touches the boundary or another kept or strongly standing-out chain.
+//     touches the boundary or another kept or strongly standing-out chain; a long straight
+//     chain of many edges is a line, whatever its contrast.
 // Canny's hysteresis (1986) along chains; the contrast test follows the neighbourhood-relative
 // sharpness of Hubeli & Gross (2001, Multiresolution feature extraction for unstructured meshes).
 #pragma once
@@ -38,6 +39,10 @@ struct CreaseOptions {
   double contrast = 3.0;
   //! ... and stands out strongly at this ratio (short chains need it).
   double strongContrast = 6.0;
+  //! A chain of at least lineEdges edges and lineLengthFactor · minLength is a line, kept
+  //! whatever its contrast (a CAD crease across a curved region whose other edges bend too).
+  double lineLengthFactor = 4.0;
+  uint32_t lineEdges = 5;
 };
 
 struct Creases {

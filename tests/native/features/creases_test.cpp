@@ -2,10 +2,17 @@
 
 #include <cmath>
 #include <cstdint>
+#include <fstream>
+#include <iterator>
+#include <string>
+#include <utility>
+#include <vector>
 
 #include "features/creases.h"
 #include "features/edge_graph.h"
+#include "features/sizing.h"
 #include "features/test_shapes.h"
+#include "mesh/mesh_io.h"
 
 using namespace conformesh;
 using namespace conformesh::features;
@@ -78,4 +85,41 @@ TEST_CASE("creases: options out of range are InvalidArgument") {
   o = CreaseOptions{};
   o.minLength = -1;
   CHECK_THROWS_AS(detectCreases(g, o), Error);
+}
+
+namespace {
+EdgeGraph sharedModel(const char* name) {
+  std::ifstream in(std::string(CONFORMESH_DATA_DIR) + "/" + name, std::ios::binary);
+  REQUIRE(in);
+  const std::vector<uint8_t> bytes((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  ReadOptions ro;
+  ro.fileName = name;
+  return buildEdgeGraph(readMesh(bytes, ro).mesh);
+}
+// Edges above 60° (the outside checker's sharp edges) that are creases, and how many there are.
+std::pair<uint32_t, uint32_t> sharpKept(const EdgeGraph& g, const Creases& c) {
+  uint32_t kept = 0, all = 0;
+  for (uint32_t e = 0; e < g.edgeCount(); ++e) {
+    if (g.isBoundary(e) || angleBetween(g.faceNormal(g.edgeFaces[e][0]), g.faceNormal(g.edgeFaces[e][1])) <= 3.14159265358979323846 / 3) continue;
+    ++all;
+    kept += c.edge[e];
+  }
+  return {kept, all};
+}
+}  // namespace
+
+TEST_CASE("creases: at the default length (2 % of the diagonal) CAD keeps its sharp edges, a coarse organic model drops most") {
+  for (const char* name : {"fandisk.off", "camelhead.off", "man.off"}) {
+    const EdgeGraph g = sharedModel(name);
+    CreaseOptions o;
+    o.minLength = 0.02 * boundingBoxDiagonal(g);
+    CreaseOptions noLines = o;
+    noLines.lineLengthFactor = 1e9;
+    const auto [kept, all] = sharpKept(g, detectCreases(g, o));
+    const uint32_t keptNoLines = sharpKept(g, detectCreases(g, noLines)).first;
+    MESSAGE(std::string(name) << ": " << kept << " of " << all << " edges above 60 deg are creases (" << keptNoLines << " without the line rule)");
+    if (std::string(name) == "fandisk.off") CHECK(kept == all);
+    if (std::string(name) == "camelhead.off") CHECK(kept > keptNoLines);  // its long creases cross curved regions
+    if (std::string(name) == "man.off") CHECK(2 * kept < all);
+  }
 }
