@@ -23,6 +23,7 @@
 #include "mesh/precondition.h"
 #include "remesh/optimize.h"
 #include "remesh/repair.h"
+#include "remesh/stitch_defects.h"
 #include "remesh/limits.h"
 #include "core/detmath.h"
 #include "core/hilbert.h"
@@ -1226,50 +1227,6 @@ std::vector<RemeshPatch> Pipeline::patchSnapshot(const MeshBuffers& out) const {
 //! A triangle with a corner below this (degrees) has collapsed: never a wanted output.
 constexpr double kCollapsedDeg = 1e-3;
 
-// Triangles whose three vertices another triangle also has; of each such pair, the one in the
-// patch with more triangles (the one to re-mesh with a vertex inside it). Ascending.
-std::vector<size_t> doubledTriangles(const MeshBuffers& m, const std::vector<uint32_t>& trianglePatch) {
-  // the triangles' sorted vertex triples in (v0, v1, v2, t) order: a counting sort on v0, then
-  // an insertion sort of each (short) bucket on (v1, v2), stable, so t ascending within ties
-  const size_t nt = m.triangleCount(), nv = m.vertexCount();
-  std::vector<std::array<uint32_t, 3>> sorted(nt);
-  std::vector<uint32_t> start(nv + 1, 0);
-  std::vector<size_t> patchSize;
-  for (size_t t = 0; t < nt; ++t) {
-    std::array<uint32_t, 3> v{m.triangles[3 * t], m.triangles[3 * t + 1], m.triangles[3 * t + 2]};
-    std::sort(v.begin(), v.end());
-    sorted[t] = v;
-    ++start[v[0] + 1];
-    if (trianglePatch[t] >= patchSize.size()) patchSize.resize(trianglePatch[t] + 1, 0);
-    ++patchSize[trianglePatch[t]];
-  }
-  for (size_t v = 0; v < nv; ++v) start[v + 1] += start[v];
-  std::vector<uint32_t> order(nt);
-  {
-    std::vector<uint32_t> fill(start.begin(), start.end() - 1);
-    for (size_t t = 0; t < nt; ++t) order[fill[sorted[t][0]]++] = uint32_t(t);
-  }
-  auto less = [&](uint32_t a, uint32_t b) {
-    return sorted[a][1] != sorted[b][1] ? sorted[a][1] < sorted[b][1] : sorted[a][2] < sorted[b][2];
-  };
-  std::vector<size_t> out;
-  for (size_t v = 0; v < nv; ++v) {
-    uint32_t* lo = order.data() + start[v];
-    uint32_t* hi = order.data() + start[v + 1];
-    if (hi - lo > 24) std::stable_sort(lo, hi, less);
-    else
-      for (uint32_t* i = lo + 1; i < hi; ++i)
-        for (uint32_t* j = i; j > lo && less(*j, *(j - 1)); --j) std::swap(*j, *(j - 1));
-    for (uint32_t* i = lo; i + 1 < hi; ++i) {
-      const uint32_t a = i[0], b = i[1];
-      if (sorted[a] != sorted[b]) continue;
-      out.push_back(patchSize[trianglePatch[a]] >= patchSize[trianglePatch[b]] ? a : b);
-    }
-  }
-  std::sort(out.begin(), out.end());
-  out.erase(std::unique(out.begin(), out.end()), out.end());
-  return out;
-}
 
 // Smallest corner angle of triangle t in degrees (quality::minMaxAngle's, the report's measure);
 // 0 for a degenerate triangle.
@@ -1557,9 +1514,11 @@ RemeshResult Pipeline::run(const MeshBuffers& input) {
     // curves that both patches border, closed by one triangle on each side): the stitched
     // surface is not manifold there. Worse than any angle: a round with fewer always wins.
     const std::vector<size_t> doubled = doubledTriangles(out, triPatch);
-    if (doubled.size() < bestDoubled ||
-        (doubled.size() == bestDoubled && (collapsed < bestCollapsed || (collapsed == bestCollapsed && bad < bestBad)))) {
-      bestDoubled = doubled.size();
+    const std::vector<std::array<size_t, 2>> chords = sharedChords(out, triPatch);
+    const size_t defects = doubled.size() + chords.size();
+    if (defects < bestDoubled ||
+        (defects == bestDoubled && (collapsed < bestCollapsed || (collapsed == bestCollapsed && bad < bestBad)))) {
+      bestDoubled = defects;
       bestBad = bad;
       bestCollapsed = collapsed;
       outIsBest = true;
@@ -1573,7 +1532,7 @@ RemeshResult Pipeline::run(const MeshBuffers& input) {
       // next round often gets there (holes: 1, 1, 0; t13_data: 11, 8, 3, 2, 2, 0).
       break;
     }
-    if ((bad == 0 && doubled.empty()) || cert >= opt_.maxCertificateRounds) break;
+    if ((bad == 0 && defects == 0) || cert >= opt_.maxCertificateRounds) break;
     // 3D angle certificate: where a lifted triangle is below the bound, ask for smaller planar
     // triangles there (a graded spot at its planar centroid) and re-mesh the patch.
     std::vector<size_t> firstTri(work_.size(), 0);
@@ -1595,6 +1554,15 @@ RemeshResult Pipeline::run(const MeshBuffers& input) {
       }
       for (int k = 0; k < 2; ++k)
         w.requiredPoints.push_back(0.5 * q[corner][k] + 0.25 * (q[(corner + 1) % 3][k] + q[(corner + 2) % 3][k]));
+      w.needsMesh = true;
+    }
+    // A shared chord is split inside its patch: a vertex at its planar midpoint.
+    for (const auto& [t, c] : chords) {
+      PatchWork& w = *work_[triPatch[t]];
+      const uint32_t* lt = &w.triangles[3 * (t - firstTri[triPatch[t]])];
+      const double* a = &w.planarPoints[2 * lt[c]];
+      const double* b = &w.planarPoints[2 * lt[(c + 1) % 3]];
+      w.requiredPoints.insert(w.requiredPoints.end(), {0.5 * (a[0] + b[0]), 0.5 * (a[1] + b[1])});
       w.needsMesh = true;
     }
     for (size_t t = 0; t < out.triangleCount(); ++t) {
