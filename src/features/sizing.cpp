@@ -99,6 +99,18 @@ SizingField computeSizing(const EdgeGraph& g, const Segmentation& seg, const Siz
       }
       if (kappa > 0) s.h[v] = std::min(s.h[v], std::sqrt(8.0 * tol / kappa));
     }
+    // A bend of θ between two faces that the output spans (no feature curve: a sharp edge that
+    // is no crease, a coarse facet's edge, or a cut, which is smooth) leaves an output triangle
+    // across it up to (h/2)·sin(θ/2) away: h <= 2·tol / sin(θ/2) at both ends. The vertex
+    // curvature above spreads a bend over the input's edge length: far gentler where edges are
+    // long.
+    for (uint32_t e = 0; e < g.edgeCount(); ++e) {
+      if (g.isBoundary(e) || seg.edgeKind[e] == EdgeKind::Feature) continue;
+      const double half = 0.5 * angleBetween(g.faceNormal(g.edgeFaces[e][0]), g.faceNormal(g.edgeFaces[e][1]));
+      if (!(half > 0)) continue;
+      const double h = 2.0 * tol / std::sin(half);
+      for (uint32_t v : g.edgeVerts[e]) s.h[v] = std::min(s.h[v], h);
+    }
   }
   for (uint32_t v = 0; v < g.vertexCount; ++v) {
     if (!o.vertexSizing.empty()) {

@@ -195,6 +195,30 @@ TEST_CASE("sizing: a cut vertex takes the surface's curvature, like its uncut ne
   for (const auto& [key, mm] : ring) CHECK(mm.second <= mm.first * (1 + 1e-9));
 }
 
+TEST_CASE("sizing: a bend the output spans (a sharp edge that is no feature) bounds the size by the chord tolerance; a feature curve does not") {
+  // a sheet folded by 60° along x = 0.5
+  MeshBuffers m = testshapes::square(8);
+  for (size_t v = 0; v < m.vertexCount(); ++v)
+    if (m.positions[3 * v] > 0.5) m.positions[3 * v + 2] = (m.positions[3 * v] - 0.5) * std::tan(kPi / 3);
+  EdgeGraph g = buildEdgeGraph(m);
+  SizingOptions so;
+  so.targetEdgeLengthRel = 0.1;
+  so.chordToleranceRel = 1e-3;
+  FeatureOptions smooth;
+  smooth.featureAngleDeg = 90;  // the fold is no feature
+  const Segmentation noFold = segment(g, smooth), fold = segment(g, FeatureOptions{});
+  const SizingField across = computeSizing(g, noFold, so), along = computeSizing(g, fold, so);
+  const double tol = 1e-3 * across.diagonal, bound = 2 * tol / std::sin(kPi / 6);
+  size_t onFold = 0;
+  for (uint32_t v = 0; v < g.vertexCount; ++v) {
+    if (std::abs(g.positions[v].x - 0.5) > 1e-12) continue;
+    ++onFold;
+    CHECK(across.h[v] <= std::max(bound, across.minLength) * (1 + 1e-12));
+    CHECK(along.h[v] > across.h[v]);  // the output follows the feature curve: no triangle spans it
+  }
+  CHECK(onFold == 9);
+}
+
 TEST_CASE("features: featureWedgeAngles gives the wedges between the input's own feature curves") {
   // cube(2): a corner has three 90° wedges, an edge midpoint two 180° ones, a face centre none
   EdgeGraph g = buildEdgeGraph(testshapes::cube(2));
