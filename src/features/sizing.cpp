@@ -108,7 +108,7 @@ SizingField computeSizing(const EdgeGraph& g, const Segmentation& seg, const Siz
       if (g.isBoundary(e) || seg.edgeKind[e] == EdgeKind::Feature) continue;
       const double half = 0.5 * angleBetween(g.faceNormal(g.edgeFaces[e][0]), g.faceNormal(g.edgeFaces[e][1]));
       if (!(half > 0)) continue;
-      const double h = 2.0 * tol / std::sin(half);
+      const double h = 2.0 * tol / dmath::sin(half);
       for (uint32_t v : g.edgeVerts[e]) s.h[v] = std::min(s.h[v], h);
     }
   }
