@@ -78,7 +78,12 @@ Creases detectCreases(const EdgeGraph& g, const CreaseOptions& o) {
   // contrast: the dihedral against the median of the other edges at both ends (the edge's own
   // continuations excluded: they are the crease, not its neighbourhood)
   std::vector<double> around;
-  struct ChainStats { double length = 0, distinct = 0, strong = 0; uint32_t edges = 0; };
+  struct ChainStats {
+    double length = 0, distinct = 0, strong = 0;  // the last two: length of edges that stand out
+    uint32_t edges = 0;
+    bool mostlyDistinct() const { return distinct >= 0.5 * length; }
+    bool mostlyStrong() const { return strong >= 0.5 * length; }
+  };
   std::vector<ChainStats> stats(ne);
   for (uint32_t e = 0; e < ne; ++e) {
     if (!candidate[e]) continue;
@@ -110,9 +115,8 @@ Creases detectCreases(const EdgeGraph& g, const CreaseOptions& o) {
     // a long chain that mostly stands out (three edges at least: one or two edges of a coarse
     // tessellation are no evidence of a line), or one that mostly stands out strongly, or a
     // line: many edges continuing each other straight over many output edges
-    const bool distinct = s.distinct >= 0.5 * s.length, strong = s.strong >= 0.5 * s.length;
     const bool line = s.length >= o.lineLengthFactor * o.minLength && s.edges >= o.lineEdges;
-    keptChain[e] = s.length >= o.minLength && ((distinct && s.edges >= 3) || strong || line);
+    keptChain[e] = s.length >= o.minLength && ((s.mostlyDistinct() && s.edges >= 3) || s.mostlyStrong() || line);
   }
   // bridges: a short chain that mostly stands out and whose every free end touches another
   // kept or strongly standing-out chain, or the boundary, closes a region instead of dangling
@@ -120,7 +124,7 @@ Creases detectCreases(const EdgeGraph& g, const CreaseOptions& o) {
   // small CAD part) holds itself up; an isolated strong edge of a coarse surface does not.
   std::vector<uint8_t> anchor(ne, 0);  // per chain root: kept, or strong
   for (uint32_t e = 0; e < ne; ++e)
-    if (candidate[e] && chain.find(e) == e) anchor[e] = keptChain[e] || stats[e].strong >= 0.5 * stats[e].length;
+    if (candidate[e] && chain.find(e) == e) anchor[e] = keptChain[e] || stats[e].mostlyStrong();
   auto touchesCurve = [&](uint32_t v, uint32_t root) {
     for (uint32_t i = g.vertexEdgeStart[v]; i < g.vertexEdgeStart[v + 1]; ++i) {
       const uint32_t f = g.vertexEdgeIds[i];
@@ -141,7 +145,7 @@ Creases detectCreases(const EdgeGraph& g, const CreaseOptions& o) {
     }
     bool any = false;
     for (uint32_t e = 0; e < ne; ++e)
-      if (candidate[e] && chain.find(e) == e && !keptChain[e] && bridged[e] && stats[e].distinct >= 0.5 * stats[e].length)
+      if (candidate[e] && chain.find(e) == e && !keptChain[e] && bridged[e] && stats[e].mostlyDistinct())
         keptChain[e] = anchor[e] = 1, any = true;
     if (!any) break;
   }
