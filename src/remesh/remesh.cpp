@@ -1429,7 +1429,7 @@ RemeshResult Pipeline::run(const MeshBuffers& input) {
   std::vector<uint32_t> bestTriPatch;
   std::vector<uint32_t> vertexFace, bestVertexFace;  // stitch(): an input face per output vertex (a hint)
   bool outIsBest = false;  // the best round is the current one: kept in out (moved, not copied)
-  size_t bestBad = SIZE_MAX, bestCollapsed = SIZE_MAX, bestDoubled = SIZE_MAX;
+  size_t bestBad = SIZE_MAX, bestCollapsed = SIZE_MAX, bestDoubled = SIZE_MAX;  // bestDoubled: stitch defects
   int staleRounds = 0;  // certificate rounds in a row that did not beat the best
   std::vector<std::vector<uint32_t>> bestCurveSamples;
   std::vector<RemeshPatch> bestPatches;
@@ -1525,11 +1525,13 @@ RemeshResult Pipeline::run(const MeshBuffers& input) {
       bestCurveSamples = cm_.curveSamples;
       if (opt_.returnPatches) bestPatches = patchSnapshot(out);
       staleRounds = 0;
-    } else if (++staleRounds >= 2) {
+    } else if (++staleRounds >= 2 && bestDoubled == 0) {
       // Two rounds in a row no better than the best: what is left does not yield to size (a
       // corner whose planar and 3D angles differ, a cut meeting a curve at a small angle). A
       // single round that is not better is no reason to stop: the spots accumulate, and the
-      // next round often gets there (holes: 1, 1, 0; t13_data: 11, 8, 3, 2, 2, 0).
+      // next round often gets there (holes: 1, 1, 0; t13_data: 11, 8, 3, 2, 2, 0). While the
+      // best round still has a stitch defect the rounds go on to their cap: a non-manifold
+      // output is an error, worse than any angle.
       break;
     }
     if ((bad == 0 && defects == 0) || cert >= opt_.maxCertificateRounds) break;
