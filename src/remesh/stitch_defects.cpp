@@ -1,28 +1,39 @@
 #include "remesh/stitch_defects.h"
 
 #include <algorithm>
-#include <tuple>
+#include <utility>
 
 namespace conformesh {
 
 std::vector<std::array<size_t, 2>> sharedChords(const MeshBuffers& m, const std::vector<uint32_t>& trianglePatch) {
-  struct Side { uint32_t a, b, patch; size_t t; int c; };
-  std::vector<Side> sides(m.triangles.size());
-  for (size_t t = 0; t < m.triangleCount(); ++t)
-    for (int c = 0; c < 3; ++c) {
-      const uint32_t u = m.triangles[3 * t + size_t(c)], w = m.triangles[3 * t + size_t(c + 1) % 3];
-      sides[3 * t + size_t(c)] = {std::min(u, w), std::max(u, w), trianglePatch[t], t, c};
-    }
-  std::sort(sides.begin(), sides.end(), [](const Side& x, const Side& y) {
-    return std::tie(x.a, x.b, x.patch, x.t) < std::tie(y.a, y.b, y.patch, y.t);
-  });
+  // the triangle sides (3t + c) bucketed by their smaller vertex (a counting sort, so t ascending
+  // in a bucket), each short bucket then sorted stably on (larger vertex, patch): linear, as it
+  // runs on every certificate round of outputs of millions of triangles
+  const size_t ns = m.triangles.size(), nv = m.vertexCount();
+  auto lo = [&](size_t s) { return std::min(m.triangles[s], m.triangles[s - s % 3 + (s + 1) % 3]); };
+  auto hi = [&](size_t s) { return std::max(m.triangles[s], m.triangles[s - s % 3 + (s + 1) % 3]); };
+  std::vector<uint32_t> start(nv + 1, 0), order(ns);
+  for (size_t s = 0; s < ns; ++s) ++start[lo(s) + 1];
+  for (size_t v = 0; v < nv; ++v) start[v + 1] += start[v];
+  {
+    std::vector<uint32_t> fill(start.begin(), start.end() - 1);
+    for (size_t s = 0; s < ns; ++s) order[fill[lo(s)]++] = uint32_t(s);
+  }
+  auto less = [&](uint32_t x, uint32_t y) {
+    return std::make_pair(hi(x), trianglePatch[x / 3]) < std::make_pair(hi(y), trianglePatch[y / 3]);
+  };
   std::vector<std::array<size_t, 2>> out;
-  for (size_t i = 0, j; i < sides.size(); i = j) {
-    for (j = i; j < sides.size() && sides[j].a == sides[i].a && sides[j].b == sides[i].b;) ++j;
-    if (j - i < 3) continue;
-    for (size_t k = i; k + 1 < j; ++k)
-      if (sides[k].patch == sides[k + 1].patch && (k == i || sides[k - 1].patch != sides[k].patch))
-        out.push_back({sides[k].t, size_t(sides[k].c)});
+  for (size_t v = 0; v < nv; ++v) {
+    uint32_t* b = order.data() + start[v];
+    uint32_t* e = order.data() + start[v + 1];
+    std::stable_sort(b, e, less);
+    for (uint32_t *i = b, *j; i < e; i = j) {
+      for (j = i; j < e && hi(*j) == hi(*i);) ++j;
+      if (j - i < 3) continue;  // a manifold edge, or a boundary one
+      for (uint32_t* k = i; k + 1 < j; ++k)
+        if (trianglePatch[k[0] / 3] == trianglePatch[k[1] / 3] && (k == i || trianglePatch[k[-1] / 3] != trianglePatch[k[0] / 3]))
+          out.push_back({k[0] / 3, k[0] % 3});
+    }
   }
   std::sort(out.begin(), out.end());
   return out;
