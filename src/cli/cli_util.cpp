@@ -59,6 +59,50 @@ Args parseArgs(const std::vector<std::string>& args, const std::vector<std::stri
   return out;
 }
 
+Args parseArgs(const std::vector<std::string>& args, const std::vector<Flag>& flags) {
+  std::vector<std::string> valueFlags, switches;
+  for (const Flag& f : flags) (f.value.empty() ? switches : valueFlags).push_back(f.name);
+  return parseArgs(args, valueFlags, switches);
+}
+
+bool asksForHelp(const std::vector<std::string>& args, const std::vector<Flag>& flags) {
+  for (size_t i = 0; i < args.size(); ++i) {
+    if (args[i] == "--help" || args[i] == "-h") return true;
+    for (const Flag& f : flags)
+      if (args[i] == f.name && !f.value.empty()) ++i;  // its value, whatever it looks like
+  }
+  return false;
+}
+
+std::string helpText(const std::string& usage, const std::string& summary, const std::vector<Flag>& flags) {
+  std::string s = "usage: conformesh " + usage + "\n\n" + summary + "\n\noptions:\n";
+  // the flag in a column of 30, its text wrapped at 100 columns
+  const size_t indent = 30, width = 100;
+  auto line = [&](const std::string& left, const std::string& text) {
+    std::string l = "  " + left;
+    l += l.size() < indent ? std::string(indent - l.size(), ' ') : "\n" + std::string(indent, ' ');
+    size_t column = indent, start = 0;
+    while (start < text.size()) {
+      size_t end = text.find(' ', start);
+      if (end == std::string::npos) end = text.size();
+      const std::string word = text.substr(start, end - start);
+      if (column > indent && column + 1 + word.size() > width) {
+        l += "\n" + std::string(indent, ' ');
+        column = indent;
+      }
+      if (column > indent) l += ' ', ++column;
+      l += word;
+      column += word.size();
+      start = end + 1;
+    }
+    s += l + "\n";
+  };
+  for (const Flag& f : flags)
+    line(f.name + (f.value.empty() ? "" : " " + f.value), f.help + (f.fallback.empty() ? "" : " (default " + f.fallback + ")"));
+  line("-h, --help", "print this help and exit");
+  return s;
+}
+
 std::vector<uint8_t> readFileBytes(const std::string& path) {
   std::ifstream in(path, std::ios::binary);
   if (!in) fail(Code::IoError, Stage::Read, "cannot open '" + path + "': " + std::strerror(errno));
@@ -129,6 +173,15 @@ conformal::BoundaryCondition boundaryFlag(const Args& args, const char* fallback
   if (b == "free") return conformal::BoundaryCondition::Free;
   if (b == "corners") return conformal::BoundaryCondition::Corners;
   fail(Code::InvalidArgument, Stage::Api, "--boundary must be circle, free or corners");
+}
+
+const char* boundaryFlagValue(conformal::BoundaryCondition b) {
+  switch (b) {
+    case conformal::BoundaryCondition::Circle: return "circle";
+    case conformal::BoundaryCondition::Free: return "free";
+    case conformal::BoundaryCondition::Corners: return "corners";
+  }
+  return "free";
 }
 
 }  // namespace conformesh::cli

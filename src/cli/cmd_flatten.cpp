@@ -20,18 +20,36 @@
 namespace conformesh::cli {
 namespace {
 
+const double kCornerAngleDeg = 30.0;
+
+std::vector<Flag> flags() {
+  const FlattenOptions d;
+  return {
+      {"-o", "OUT.obj", "the input mesh with the planar coordinates as vt (required)", ""},
+      {"--boundary", "circle|free|corners",
+       "circle: a round disk; free: u = 0 on the boundary; corners: corners keep their 3D angle",
+       boundaryFlagValue(d.boundary)},
+      {"--corner-angle", "DEG",
+       "with --boundary corners: boundary vertices whose 3D angle differs from 180 degrees by more are corners",
+       jsonNumber(kCornerAngleDeg)},
+      {"--tolerance", "T", "stop at a curvature error max |K - Kbar| below this, radians", jsonNumber(d.tolerance)},
+      {"--max-iterations", "N", "Newton iterations at most (then IterationLimit)", jsonNumber(d.maxIterations)},
+      {"--no-flips", "", "no intrinsic Delaunay flips during the flow (to study the flow without them)", ""},
+      {"--json", "", "print the report, or the error, as one JSON object on stdout", ""},
+  };
+}
+
 int runFlatten(const std::vector<std::string>& argv) {
   bool json = false;
   for (const auto& a : argv) json = json || a == "--json";
   try {
-    Args args = parseArgs(argv, {"-o", "--boundary", "--corner-angle", "--tolerance", "--max-iterations"},
-                          {"--json", "--no-flips"});
+    Args args = parseArgs(argv, flags());
     if (args.positional.size() != 1 || !args.has("-o"))
       fail(Code::InvalidArgument, Stage::Api,
            "usage: conformesh flatten IN -o OUT.obj [--boundary circle|free|corners] [--corner-angle DEG] [--json]");
     const std::string in = args.positional[0], out = args.get("-o");
     FlattenOptions o;
-    o.boundary = boundaryFlag(args, "circle");
+    o.boundary = boundaryFlag(args, boundaryFlagValue(o.boundary));
     o.tolerance = args.number("--tolerance", o.tolerance);
     o.maxIterations = int(args.number("--max-iterations", o.maxIterations));
     o.flips = !args.has("--no-flips");
@@ -39,7 +57,7 @@ int runFlatten(const std::vector<std::string>& argv) {
     ro.fileName = in;
     ReadResult rr = readMesh(readFileBytes(in), ro);
     if (o.boundary == BoundaryCondition::Corners) {
-      const double deg = args.number("--corner-angle", 30.0);
+      const double deg = args.number("--corner-angle", kCornerAngleDeg);
       if (!(deg > 0 && deg < 180)) fail(Code::InvalidArgument, Stage::Api, "--corner-angle must be in (0, 180) degrees");
       o.corners = detectCorners(rr.mesh, deg * M_PI / 180.0);
     }
@@ -91,7 +109,7 @@ int runFlatten(const std::vector<std::string>& argv) {
 const CommandRegistrar registrar({"flatten",
                                   "flatten IN -o OUT.obj [--boundary circle|free|corners] [--corner-angle DEG] [--no-flips] [--json]",
                                   "conformal flattening (Ricci flow with intrinsic Delaunay flips); writes uv as vt",
-                                  &runFlatten});
+                                  flags, &runFlatten});
 
 }  // namespace
 }  // namespace conformesh::cli

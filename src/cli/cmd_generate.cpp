@@ -25,12 +25,22 @@ MeshBuffers makeShape(const std::string& shape, int level) {
   fail(Code::InvalidArgument, Stage::Api, "unknown shape '" + shape + "' (one of: " + kShapes + ")");
 }
 
+const int kLevel = 2;
+
+std::vector<Flag> flags() {
+  return {
+      {"-o", "FILE", "the mesh file to write (required)", ""},
+      {"--level", "N", "resolution, an integer in [1, 8]: higher is finer", std::to_string(kLevel)},
+      {"--format", "NAME", "obj, off, stl, stl-ascii, ply, ply-ascii or ply-be", "from the extension of -o"},
+  };
+}
+
 int runGenerate(const std::vector<std::string>& argv) {
   try {
-    Args args = parseArgs(argv, {"-o", "--level", "--format"}, {});
+    Args args = parseArgs(argv, flags());
     if (args.positional.size() != 1 || !args.has("-o"))
       fail(Code::InvalidArgument, Stage::Api, "usage: conformesh generate SHAPE -o FILE [--level N] [--format NAME]");
-    double level = args.number("--level", 2);
+    double level = args.number("--level", kLevel);
     if (level < 1 || level > 8 || level != int(level))
       fail(Code::InvalidArgument, Stage::Api, "--level must be an integer in [1, 8]");
     const std::string out = args.get("-o");
@@ -51,7 +61,7 @@ int runGenerate(const std::vector<std::string>& argv) {
 
 const CommandRegistrar registrar({"generate", "generate SHAPE -o FILE [--level N] [--format NAME]",
                                   "write a generated test surface (icosphere, torus, disk, annulus, cube, box-with-hole)",
-                                  runGenerate});
+                                  flags, runGenerate});
 
 }  // namespace
 }  // namespace conformesh::cli

@@ -25,17 +25,28 @@ struct Warning {
 
 std::string numberText(double v) { return jsonNumber(v); }
 
+std::vector<Flag> flags() {
+  const ReadOptions d;
+  return {
+      {"--weld", "TOL", "also weld vertices closer than this, in the input's units; 0: exact duplicates in STL only",
+       jsonNumber(d.weldTolerance)},
+      {"--format", "NAME", "read as obj, off, stl, stl-ascii, ply, ply-ascii or ply-be; auto: from the content",
+       formatName(d.format)},
+      {"--json", "", "print the report, or the error, as one JSON object on stdout", ""},
+  };
+}
+
 int runInfo(const std::vector<std::string>& argv) {
   bool json = false;
   for (const auto& a : argv) json = json || a == "--json";
   try {
-    Args args = parseArgs(argv, {"--weld", "--format"}, {"--json"});
+    Args args = parseArgs(argv, flags());
     if (args.positional.size() != 1)
       fail(Code::InvalidArgument, Stage::Api, "usage: conformesh info FILE [--json] [--weld TOL] [--format NAME]");
     const std::string& path = args.positional[0];
     ReadOptions ro;
     ro.fileName = path;
-    ro.weldTolerance = args.number("--weld", 0.0);
+    ro.weldTolerance = args.number("--weld", ro.weldTolerance);
     if (ro.weldTolerance < 0) fail(Code::InvalidArgument, Stage::Api, "--weld needs a tolerance >= 0");
     if (args.has("--format")) {
       ro.format = formatFromName(args.get("--format"));
@@ -102,7 +113,7 @@ int runInfo(const std::vector<std::string>& argv) {
 const CommandRegistrar registrar({"info", "info FILE [--json] [--weld TOL] [--format NAME]",
                                   "validation and topology report: vertices, faces, components, boundary loops, "
                                   "Euler characteristic, genus, non-manifold edges, degenerate faces, warnings",
-                                  runInfo});
+                                  flags, runInfo});
 
 }  // namespace
 }  // namespace conformesh::cli

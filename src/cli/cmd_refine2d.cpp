@@ -33,20 +33,38 @@ std::string meshText(const planar::PlanarMesh& m, bool off) {
   return s;
 }
 
+std::vector<Flag> flags() {
+  const planar::RefineOptions d;
+  return {
+      {"-o", "OUT.obj|OUT.off", "write the planar mesh (z = 0); without it no file is written", ""},
+      {"--min-angle", "DEG", "angle bound of every triangle that is not exempt, degrees in [0, 34]",
+       jsonNumber(d.minAngleDeg)},
+      {"--max-area", "A", "largest triangle area, in the input's units squared; 0: none; not with --max-edge",
+       jsonNumber(d.maxArea)},
+      {"--max-edge", "L", "largest edge length, in the input's units; 0: none; not with --max-area",
+       jsonNumber(d.maxEdge)},
+      {"--max-insertions", "N", "Steiner points at most (then IterationLimit, exit 3)",
+       jsonNumber(double(d.maxInsertions))},
+      {"--convex-hull", "", "the domain is the convex hull minus the holes (Triangle's -c)", ""},
+      {"--holes-by-orientation", "", "counterclockwise loops bound the domain, clockwise loops in them are holes", ""},
+      {"--circumcenters", "", "insert circumcenters instead of off-centers", ""},
+      {"--json", "", "print the report, or the error, as one JSON object on stdout", ""},
+  };
+}
+
 int run(const std::vector<std::string>& argv) {
   bool json = false;
   for (const auto& a : argv) json = json || a == "--json";
   try {
-    Args args = parseArgs(argv, {"-o", "--min-angle", "--max-area", "--max-edge", "--max-insertions"},
-                          {"--json", "--convex-hull", "--holes-by-orientation", "--circumcenters"});
+    Args args = parseArgs(argv, flags());
     if (args.positional.size() != 1)
       fail(Code::InvalidArgument, Stage::Api, "refine2d needs exactly one input .poly file");
     if (args.has("--max-area") && args.has("--max-edge"))
       fail(Code::InvalidArgument, Stage::Api, "give --max-area or --max-edge, not both");
     planar::RefineOptions opt;
-    opt.minAngleDeg = args.number("--min-angle", 30.0);
-    opt.maxArea = args.number("--max-area", 0.0);
-    opt.maxEdge = args.number("--max-edge", 0.0);
+    opt.minAngleDeg = args.number("--min-angle", opt.minAngleDeg);
+    opt.maxArea = args.number("--max-area", opt.maxArea);
+    opt.maxEdge = args.number("--max-edge", opt.maxEdge);
     double cap = args.number("--max-insertions", double(opt.maxInsertions));
     if (!(cap >= 0)) fail(Code::InvalidArgument, Stage::Api, "--max-insertions must be >= 0");
     opt.maxInsertions = size_t(cap);
@@ -90,7 +108,8 @@ int run(const std::vector<std::string>& argv) {
 const CommandRegistrar reg({"refine2d",
                             "refine2d IN.poly [-o OUT.obj|OUT.off] [--min-angle D] [--max-area A | --max-edge L] "
                             "[--convex-hull] [--holes-by-orientation] [--circumcenters] [--max-insertions N] [--json]",
-                            "quality triangulation of a planar straight-line graph (Delaunay refinement)", run});
+                            "quality triangulation of a planar straight-line graph (Delaunay refinement)", flags,
+                            run});
 
 }  // namespace
 }  // namespace conformesh::cli

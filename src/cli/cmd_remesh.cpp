@@ -88,20 +88,60 @@ void printTable(const RemeshReport& r) {
               t.total);
 }
 
+// Every flag of remesh, with RemeshOptions' defaults: what parsing accepts and --help prints.
+std::vector<Flag> flags() {
+  const RemeshOptions d;
+  const auto num = [](double v) { return jsonNumber(v); };
+  return {
+      {"-o", "OUT", "write the output mesh; .obj, .off, .stl or .ply picks the format; without it no file is written", ""},
+      {"--min-angle", "DEG", "angle bound of every output triangle outside exempt input corners, degrees in [0, 34]",
+       num(d.minAngleDeg)},
+      {"--edge-length", "L", "target edge length in flat regions, in the input's units; 0: --edge-length-rel",
+       num(d.targetEdgeLength)},
+      {"--edge-length-rel", "R", "target edge length as a fraction of the bounding-box diagonal",
+       num(d.targetEdgeLengthRel)},
+      {"--feature-angle", "DEG", "edges whose dihedral angle exceeds this (degrees) may be features",
+       num(d.featureAngleDeg)},
+      {"--min-feature-length", "L",
+       "shortest chain of sharp edges kept as a crease, in the input's units; < 0: twice the target edge "
+       "length; 0: every sharp edge",
+       num(d.minFeatureLength)},
+      {"--min-patch-width", "W",
+       "merge patches narrower than this into a neighbour, in the input's units; < 0: a twentieth of the "
+       "target edge length; 0: keep every patch",
+       num(d.minPatchWidth)},
+      {"--chord-tol", "T",
+       "chord deviation bound of the curvature sizing, in the input's units; < 0: " + num(d.chordToleranceRel) +
+           " times the diagonal; 0: no curvature sizing",
+       num(d.chordTolerance)},
+      {"--boundary", "free|corners|circle", "the boundary condition each patch's flattening tries first",
+       boundaryFlagValue(d.boundary)},
+      {"--max-triangles", "N", "fail with TooLarge when the output would have more triangles",
+       num(double(d.maxTriangles))},
+      {"--max-vertices", "N", "fail with TooLarge when the output would have more vertices", num(double(d.maxVertices))},
+      {"--optimize-iterations", "N", "passes of the optimization (a cap), an integer >= 0",
+       num(d.optimizeIterations)},
+      {"--optimize-tolerance", "T", "stop optimizing when a pass gains less than this fraction of the mean min angle",
+       num(d.optimizeTolerance)},
+      {"--no-optimize", "", "skip the optimization (vertex moves and flips judged in 3D)", ""},
+      {"--no-hausdorff", "", "leave the Hausdorff distance out of the report (it costs time on big meshes)", ""},
+      {"--json", "", "print the report, or the error, as one JSON object on stdout", ""},
+      {"--keep-defective", "", "write the output even when its topology is not the input's (still exit 1)", ""},
+      {"--force-topology-defect", "", "break the output on purpose, to test the topology check", ""},
+  };
+}
+
 int run(const std::vector<std::string>& argv) {
   bool json = false;
   for (const auto& a : argv) json = json || a == "--json";
   try {
-    Args args = parseArgs(argv,
-                          {"-o", "--min-angle", "--edge-length", "--edge-length-rel", "--feature-angle", "--min-feature-length", "--min-patch-width", "--chord-tol",
-                           "--max-triangles", "--max-vertices", "--boundary", "--optimize-iterations", "--optimize-tolerance"},
-                          {"--json", "--no-hausdorff", "--no-optimize", "--keep-defective", "--force-topology-defect"});
+    Args args = parseArgs(argv, flags());
     if (args.positional.size() != 1) fail(Code::InvalidArgument, Stage::Api, "remesh needs exactly one input file");
     if (args.has("--edge-length") && args.has("--edge-length-rel"))
       fail(Code::InvalidArgument, Stage::Api, "give --edge-length or --edge-length-rel, not both");
     RemeshOptions opt;
     opt.minAngleDeg = args.number("--min-angle", opt.minAngleDeg);
-    opt.targetEdgeLength = args.number("--edge-length", 0.0);
+    opt.targetEdgeLength = args.number("--edge-length", opt.targetEdgeLength);
     opt.targetEdgeLengthRel = args.number("--edge-length-rel", opt.targetEdgeLengthRel);
     opt.featureAngleDeg = args.number("--feature-angle", opt.featureAngleDeg);
     opt.minFeatureLength = args.number("--min-feature-length", opt.minFeatureLength);
@@ -117,7 +157,7 @@ int run(const std::vector<std::string>& argv) {
       fail(Code::InvalidArgument, Stage::Api, "option --optimize-iterations needs an integer");
     opt.optimizeIterations = std::abs(iterations) <= 1e6 ? int(iterations) : -1;
     opt.optimizeTolerance = args.number("--optimize-tolerance", opt.optimizeTolerance);
-    opt.boundary = boundaryFlag(args, "free");
+    opt.boundary = boundaryFlag(args, boundaryFlagValue(opt.boundary));
     // limits: 0 and negative values are rejected by remesh (InvalidArgument), never "unlimited"
     auto limit = [&](const char* flag, size_t fallback) {
       double v = args.number(flag, double(fallback));
@@ -148,13 +188,9 @@ int run(const std::vector<std::string>& argv) {
   }
 }
 
-const CommandRegistrar registrar({"remesh",
-                                  "remesh IN -o OUT [--min-angle D] [--edge-length L | --edge-length-rel R] "
-                                  "[--feature-angle D] [--min-feature-length L] [--min-patch-width W] [--chord-tol T] [--boundary free|corners|circle] [--max-triangles N] [--max-vertices N] [--json] "
-                                  "[--no-hausdorff] [--no-optimize] [--optimize-iterations N] [--optimize-tolerance T] [--keep-defective] "
-                                  "[--force-topology-defect]",
+const CommandRegistrar registrar({"remesh", "remesh IN [-o OUT] [options]",
                                   "remesh a surface: conformal flattening per patch, planar Delaunay refinement, lift",
-                                  run});
+                                  flags, run});
 
 }  // namespace
 }  // namespace conformesh::cli

@@ -5,6 +5,8 @@
 #include <string>
 #include <vector>
 
+#include "cli/cli_util.h"
+
 namespace conformesh::cli {
 
 using CommandFn = int (*)(const std::vector<std::string>& args);
@@ -13,6 +15,7 @@ struct Command {
   const char* name;
   const char* usage;    // one line: "info FILE [--json]"
   const char* summary;  // what it does
+  std::vector<Flag> (*flags)();  // every flag it accepts: what its parsing and its --help read
   CommandFn run;
 };
 

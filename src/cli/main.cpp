@@ -29,6 +29,8 @@ void printUsage(std::FILE* out) {
             [](const auto& a, const auto& b) { return std::strcmp(a.name, b.name) < 0; });
   std::fprintf(out, "usage: conformesh COMMAND [ARGS]\n\ncommands:\n");
   for (const auto& c : commands) std::fprintf(out, "  conformesh %s\n      %s\n", c.usage, c.summary);
+  std::fprintf(out, "\n  conformesh COMMAND --help   flags, defaults and units of a command\n"
+                    "  conformesh --version        print the version\n");
 }
 
 #if defined(__GLIBC__) && defined(__linux__)
@@ -84,8 +86,18 @@ int main(int argc, char** argv) {
     printUsage(stdout);
     return 0;
   }
+  if (name == "--version") {
+    std::printf("conformesh %s\n", CONFORMESH_VERSION);
+    return 0;
+  }
   for (const auto& c : conformesh::cli::commandRegistry()) {
-    if (name == c.name) return c.run(std::vector<std::string>(argv + 2, argv + argc));
+    if (name != c.name) continue;
+    const std::vector<std::string> args(argv + 2, argv + argc);
+    if (conformesh::cli::asksForHelp(args, c.flags())) {
+      std::fputs(conformesh::cli::helpText(c.usage, c.summary, c.flags()).c_str(), stdout);
+      return 0;
+    }
+    return c.run(args);
   }
   std::fprintf(stderr, "conformesh: unknown command '%s'\n\n", name.c_str());
   printUsage(stderr);

@@ -6,20 +6,11 @@ import { spawnSync } from 'node:child_process';
 import { existsSync, mkdtempSync, readFileSync, rmSync, writeFileSync } from 'node:fs';
 import { tmpdir } from 'node:os';
 import { join } from 'node:path';
+import { check, finish } from './check.mjs';
 
 const [exe, dataDir, samplesDir] = process.argv.slice(2);
 const KEYS = ['vertices', 'faces', 'components', 'boundaryLoops', 'euler', 'genus', 'nonManifoldEdges',
   'degenerateFaces', 'warnings'];
-let failures = 0;
-let checks = 0;
-
-function check(ok, what) {
-  checks++;
-  if (!ok) {
-    failures++;
-    console.error(`FAIL: ${what}`);
-  }
-}
 
 function info(file, json = true) {
   const r = spawnSync(exe, ['info', file, ...(json ? ['--json'] : [])], { encoding: 'utf8' });
@@ -143,5 +134,4 @@ try {
   for (const k of KEYS) check(new RegExp(`^${k} +\\S`, 'm').test(r.stdout), `human format has a row '${k}'`);
 }
 
-console.log(`${checks - failures}/${checks} checks passed`);
-process.exit(failures ? 1 : 0);
+finish();
