@@ -9,29 +9,41 @@ import { init } from './index.js';
 import { ConformeshError, StatusCode } from './status.js';
 import type { MeshFormat, RemeshResult } from './types.js';
 
+/** One flag of a command (the native Flag of src/cli/cli_util.h): what parsing and --help read. */
+interface Flag {
+  name: string;
+  /** What its value is, as --help shows it ('DEG'); '' for a switch. */
+  value: string;
+  /** What it sets, with its units. */
+  help: string;
+  /** Its default: what a run uses when the flag is absent, and what --help prints. */
+  default?: number | string;
+}
+
 interface Args {
   positional: string[];
   flags: Map<string, string>;
+  table: Flag[];
 }
 
 interface Command {
   usage: string;
   summary: string;
-  valueFlags: string[];
-  switches: string[];
+  flags: Flag[];
   run(args: Args, api: Conformesh): Promise<number>;
 }
 
 /** Same rules as the native parseArgs (src/cli/cli_util.cpp): unknown options are errors. */
-function parseArgs(argv: string[], valueFlags: string[], switches: string[]): Args {
-  const out: Args = { positional: [], flags: new Map() };
+function parseArgs(argv: string[], table: Flag[]): Args {
+  const out: Args = { positional: [], flags: new Map(), table };
+  const flag = (name: string) => table.find((f) => f.name === name);
   for (let i = 0; i < argv.length; ++i) {
     const a = argv[i]!;
     if (a.length > 1 && a[0] === '-' && !/^-[0-9.]/.test(a)) {
-      if (valueFlags.includes(a)) {
+      if (flag(a)?.value) {
         if (i + 1 >= argv.length) throw new ConformeshError('InvalidArgument', 'api', `option ${a} needs a value`);
         out.flags.set(a, argv[++i]!);
-      } else if (switches.includes(a)) {
+      } else if (flag(a)) {
         out.flags.set(a, '');
       } else {
         throw new ConformeshError('InvalidArgument', 'api', `unknown option ${a}`);
@@ -41,6 +53,48 @@ function parseArgs(argv: string[], valueFlags: string[], switches: string[]): Ar
     }
   }
   return out;
+}
+
+/** True when argv holds --help or -h where a flag may stand (asksForHelp in src/cli/cli_util.cpp). */
+function asksForHelp(argv: string[], table: Flag[]): boolean {
+  for (let i = 0; i < argv.length; ++i) {
+    if (argv[i] === '--help' || argv[i] === '-h') return true;
+    if (table.find((f) => f.name === argv[i])?.value) ++i;
+  }
+  return false;
+}
+
+/** A command's --help, laid out as helpText in src/cli/cli_util.cpp: flags in a column of 30, text wrapped at 100. */
+function helpText(command: Command): string {
+  const indent = 30, width = 100;
+  let s = `usage: conformesh ${command.usage}\n\n${command.summary}\n\noptions:\n`;
+  const line = (left: string, text: string) => {
+    let l = `  ${left}`;
+    l += l.length < indent ? ' '.repeat(indent - l.length) : `\n${' '.repeat(indent)}`;
+    let column = indent;
+    for (const word of text.split(' ')) {
+      if (column > indent && column + 1 + word.length > width) {
+        l += `\n${' '.repeat(indent)}`;
+        column = indent;
+      }
+      if (column > indent) (l += ' '), ++column;
+      l += word;
+      column += word.length;
+    }
+    s += `${l}\n`;
+  };
+  for (const f of command.flags) {
+    const fallback = f.default === undefined ? '' : ` (default ${typeof f.default === 'number' ? jsonNumber(f.default) : f.default})`;
+    line(f.value ? `${f.name} ${f.value}` : f.name, f.help + fallback);
+  }
+  line('-h, --help', 'print this help and exit');
+  return s;
+}
+
+/** The package's version, from its package.json (one level above dist/). */
+async function packageVersion(): Promise<string> {
+  const json = JSON.parse(await readFile(new URL('../package.json', import.meta.url), 'utf8')) as { version: string };
+  return json.version;
 }
 
 /** C's printf("%.{precision}g", v) for finite v. */
@@ -104,17 +158,24 @@ async function readFileBytes(path: string): Promise<Uint8Array> {
   }
 }
 
-/** Args.number of the native CLI. */
-/** --boundary circle|free|corners (InvalidArgument otherwise), as the native CLI. */
-function boundaryFlag(args: Args, fallback: 'circle' | 'free' | 'corners'): 'circle' | 'free' | 'corners' {
-  const b = args.flags.get('--boundary') ?? fallback;
+/** --boundary circle|free|corners (InvalidArgument otherwise), as the native CLI; the table's default when absent. */
+function boundaryFlag(args: Args): 'circle' | 'free' | 'corners' {
+  const b = args.flags.get('--boundary') ?? defaultOf(args, '--boundary');
   if (b !== 'circle' && b !== 'free' && b !== 'corners') throw new ConformeshError('InvalidArgument', 'api', '--boundary must be circle, free or corners');
   return b;
 }
 
-function numberFlag(args: Args, name: string, fallback: number): number {
+/** A flag's default from its command's table. */
+function defaultOf(args: Args, name: string): number | string {
+  const d = args.table.find((f) => f.name === name)?.default;
+  if (d === undefined) throw new ConformeshError('InternalError', 'api', `no default for ${name}`);
+  return d;
+}
+
+/** Args.number of the native CLI; the table's default when the flag is absent. */
+function numberFlag(args: Args, name: string): number {
   const v = args.flags.get(name);
-  if (v === undefined) return fallback;
+  if (v === undefined) return defaultOf(args, name) as number;
   const d = v.trim() === v && v !== '' ? Number(v) : Number.NaN;
   if (!Number.isFinite(d)) throw new ConformeshError('InvalidArgument', 'api', `option ${name} needs a number, got '${v}'`);
   return d;
@@ -122,7 +183,7 @@ function numberFlag(args: Args, name: string, fallback: number): number {
 
 /** numberFlag for a count: the native CLI's error for a fractional value. */
 function integerFlag(args: Args, name: string): number {
-  const d = numberFlag(args, name, 0);
+  const d = numberFlag(args, name);
   if (!Number.isInteger(d)) throw new ConformeshError('InvalidArgument', 'api', `option ${name} needs an integer`);
   return d;
 }
@@ -174,26 +235,38 @@ const refine2dUsage =
   'refine2d IN.poly [-o OUT.obj|OUT.off] [--min-angle D] [--max-area A | --max-edge L] [--convex-hull] [--holes-by-orientation] [--circumcenters] [--max-insertions N] [--json]';
 const flattenUsage =
   'flatten IN -o OUT.obj [--boundary circle|free|corners] [--corner-angle DEG] [--no-flips] [--json]';
-const remeshUsage =
-  'remesh IN -o OUT [--min-angle D] [--edge-length L | --edge-length-rel R] [--feature-angle D] [--min-feature-length L] [--min-patch-width W] [--chord-tol T] [--boundary free|corners|circle] [--max-triangles N] [--max-vertices N] [--json] [--no-hausdorff] [--no-optimize] [--optimize-iterations N] [--optimize-tolerance T] [--keep-defective] [--force-topology-defect]';
+const remeshUsage = 'remesh IN [-o OUT] [options]';
 
 const infoUsage = 'info FILE [--json] [--weld TOL] [--format NAME]';
+
+// The flag tables below say what the native ones say (src/cli/cmd_*.cpp, defaults from the C++
+// options structs); tests/js/cli.test.ts compares the two --help texts.
+const jsonFlag: Flag = { name: '--json', value: '', help: 'print the report, or the error, as one JSON object on stdout' };
 
 const commands: Record<string, Command> = {
   // src/cli/cmd_refine2d.cpp
   refine2d: {
     usage: refine2dUsage,
     summary: 'quality triangulation of a planar straight-line graph (Delaunay refinement)',
-    valueFlags: ['-o', '--min-angle', '--max-area', '--max-edge', '--max-insertions'],
-    switches: ['--json', '--convex-hull', '--holes-by-orientation', '--circumcenters'],
+    flags: [
+      { name: '-o', value: 'OUT.obj|OUT.off', help: 'write the planar mesh (z = 0); without it no file is written' },
+      { name: '--min-angle', value: 'DEG', help: 'angle bound of every triangle that is not exempt, degrees in [0, 34]', default: 30 },
+      { name: '--max-area', value: 'A', help: "largest triangle area, in the input's units squared; 0: none; not with --max-edge", default: 0 },
+      { name: '--max-edge', value: 'L', help: "largest edge length, in the input's units; 0: none; not with --max-area", default: 0 },
+      { name: '--max-insertions', value: 'N', help: 'Steiner points at most (then IterationLimit, exit 3)', default: 1e8 },
+      { name: '--convex-hull', value: '', help: "the domain is the convex hull minus the holes (Triangle's -c)" },
+      { name: '--holes-by-orientation', value: '', help: 'counterclockwise loops bound the domain, clockwise loops in them are holes' },
+      { name: '--circumcenters', value: '', help: 'insert circumcenters instead of off-centers' },
+      jsonFlag,
+    ],
     async run(args, api) {
       if (args.positional.length !== 1) throw new ConformeshError('InvalidArgument', 'api', 'refine2d needs exactly one input .poly file');
       if (args.flags.has('--max-area') && args.flags.has('--max-edge'))
         throw new ConformeshError('InvalidArgument', 'api', 'give --max-area or --max-edge, not both');
-      const minAngle = numberFlag(args, '--min-angle', 30);
-      const maxArea = numberFlag(args, '--max-area', 0);
-      const maxEdge = numberFlag(args, '--max-edge', 0);
-      const cap = numberFlag(args, '--max-insertions', 1e8);
+      const minAngle = numberFlag(args, '--min-angle');
+      const maxArea = numberFlag(args, '--max-area');
+      const maxEdge = numberFlag(args, '--max-edge');
+      const cap = numberFlag(args, '--max-insertions');
       if (!(cap >= 0)) throw new ConformeshError('InvalidArgument', 'api', '--max-insertions must be >= 0');
       const out = args.flags.get('-o') ?? '';
       let off = false;
@@ -232,8 +305,25 @@ const commands: Record<string, Command> = {
   flatten: {
     usage: flattenUsage,
     summary: 'conformal flattening (Ricci flow with intrinsic Delaunay flips); writes uv as vt',
-    valueFlags: ['-o', '--boundary', '--corner-angle', '--tolerance', '--max-iterations'],
-    switches: ['--json', '--no-flips'],
+    flags: [
+      { name: '-o', value: 'OUT.obj', help: 'the input mesh with the planar coordinates as vt (required)' },
+      {
+        name: '--boundary',
+        value: 'circle|free|corners',
+        help: 'circle: a round disk; free: u = 0 on the boundary; corners: corners keep their 3D angle',
+        default: 'circle',
+      },
+      {
+        name: '--corner-angle',
+        value: 'DEG',
+        help: 'with --boundary corners: boundary vertices whose 3D angle differs from 180 degrees by more are corners',
+        default: 30,
+      },
+      { name: '--tolerance', value: 'T', help: 'stop at a curvature error max |K - Kbar| below this, radians', default: 1e-9 },
+      { name: '--max-iterations', value: 'N', help: 'Newton iterations at most (then IterationLimit)', default: 100 },
+      { name: '--no-flips', value: '', help: 'no intrinsic Delaunay flips during the flow (to study the flow without them)' },
+      jsonFlag,
+    ],
     async run(args, api) {
       const out = args.flags.get('-o');
       if (args.positional.length !== 1 || out === undefined)
@@ -243,11 +333,11 @@ const commands: Record<string, Command> = {
           'usage: conformesh flatten IN -o OUT.obj [--boundary circle|free|corners] [--corner-angle DEG] [--json]',
         );
       const path = args.positional[0]!;
-      const boundary = boundaryFlag(args, 'circle');
-      const tolerance = numberFlag(args, '--tolerance', 1e-9);
-      const maxIterations = Math.trunc(numberFlag(args, '--max-iterations', 100));
+      const boundary = boundaryFlag(args);
+      const tolerance = numberFlag(args, '--tolerance');
+      const maxIterations = Math.trunc(numberFlag(args, '--max-iterations'));
       const mesh = api.readMesh(await readFileBytes(path), { fileName: path });
-      const cornerAngle = boundary === 'corners' ? numberFlag(args, '--corner-angle', 30) : 30;
+      const cornerAngle = boundary === 'corners' ? numberFlag(args, '--corner-angle') : (defaultOf(args, '--corner-angle') as number);
       if (!(cornerAngle > 0 && cornerAngle < 180))
         throw new ConformeshError('InvalidArgument', 'api', '--corner-angle must be in (0, 180) degrees');
       const r = api.flatten(mesh, { boundary, cornerAngle, tolerance, maxIterations, flips: !args.flags.has('--no-flips') });
@@ -289,30 +379,68 @@ const commands: Record<string, Command> = {
   remesh: {
     usage: remeshUsage,
     summary: 'remesh a surface: conformal flattening per patch, planar Delaunay refinement, lift',
-    valueFlags: ['-o', '--min-angle', '--edge-length', '--edge-length-rel', '--feature-angle', '--min-feature-length', '--min-patch-width', '--chord-tol', '--max-triangles', '--max-vertices', '--boundary', '--optimize-iterations', '--optimize-tolerance'],
-    switches: ['--json', '--no-hausdorff', '--no-optimize', '--keep-defective', '--force-topology-defect'],
+    flags: [
+      { name: '-o', value: 'OUT', help: 'write the output mesh; .obj, .off, .stl or .ply picks the format; without it no file is written' },
+      { name: '--min-angle', value: 'DEG', help: 'angle bound of every output triangle outside exempt input corners, degrees in [0, 34]', default: 30 },
+      { name: '--edge-length', value: 'L', help: "target edge length in flat regions, in the input's units; 0: --edge-length-rel", default: 0 },
+      { name: '--edge-length-rel', value: 'R', help: 'target edge length as a fraction of the bounding-box diagonal', default: 0.01 },
+      { name: '--feature-angle', value: 'DEG', help: 'edges whose dihedral angle exceeds this (degrees) may be features', default: 40 },
+      {
+        name: '--min-feature-length',
+        value: 'L',
+        help: "shortest chain of sharp edges kept as a crease, in the input's units; < 0: twice the target edge length; 0: every sharp edge",
+        default: -1,
+      },
+      {
+        name: '--min-patch-width',
+        value: 'W',
+        help: "merge patches narrower than this into a neighbour, in the input's units; < 0: a twentieth of the target edge length; 0: keep every patch",
+        default: 0,
+      },
+      {
+        name: '--chord-tol',
+        value: 'T',
+        help: "chord deviation bound of the curvature sizing, in the input's units; < 0: 0.001 times the diagonal; 0: no curvature sizing",
+        default: -1,
+      },
+      { name: '--boundary', value: 'free|corners|circle', help: "the boundary condition each patch's flattening tries first", default: 'free' },
+      { name: '--max-triangles', value: 'N', help: 'fail with TooLarge when the output would have more triangles', default: 32 * 2 ** 20 },
+      { name: '--max-vertices', value: 'N', help: 'fail with TooLarge when the output would have more vertices', default: 16 * 2 ** 20 },
+      { name: '--optimize-iterations', value: 'N', help: 'passes of the optimization (a cap), an integer >= 0', default: 2 },
+      {
+        name: '--optimize-tolerance',
+        value: 'T',
+        help: 'stop optimizing when a pass gains less than this fraction of the mean min angle',
+        default: 1e-3,
+      },
+      { name: '--no-optimize', value: '', help: 'skip the optimization (vertex moves and flips judged in 3D)' },
+      { name: '--no-hausdorff', value: '', help: 'leave the Hausdorff distance out of the report (it costs time on big meshes)' },
+      jsonFlag,
+      { name: '--keep-defective', value: '', help: "write the output even when its topology is not the input's (still exit 1)" },
+      { name: '--force-topology-defect', value: '', help: 'break the output on purpose, to test the topology check' },
+    ],
     async run(args, api) {
       if (args.positional.length !== 1) throw new ConformeshError('InvalidArgument', 'api', 'remesh needs exactly one input file');
       if (args.flags.has('--edge-length') && args.flags.has('--edge-length-rel'))
         throw new ConformeshError('InvalidArgument', 'api', 'give --edge-length or --edge-length-rel, not both');
       const options = {
-        minAngle: numberFlag(args, '--min-angle', 30),
-        targetEdgeLength: numberFlag(args, '--edge-length', 0),
-        targetEdgeLengthRel: numberFlag(args, '--edge-length-rel', 0.01),
-        featureAngle: numberFlag(args, '--feature-angle', 40),
-        minFeatureLength: numberFlag(args, '--min-feature-length', -1),
-        minPatchWidth: numberFlag(args, '--min-patch-width', 0),
-        chordTolerance: numberFlag(args, '--chord-tol', -1),
+        minAngle: numberFlag(args, '--min-angle'),
+        targetEdgeLength: numberFlag(args, '--edge-length'),
+        targetEdgeLengthRel: numberFlag(args, '--edge-length-rel'),
+        featureAngle: numberFlag(args, '--feature-angle'),
+        minFeatureLength: numberFlag(args, '--min-feature-length'),
+        minPatchWidth: numberFlag(args, '--min-patch-width'),
+        chordTolerance: numberFlag(args, '--chord-tol'),
         computeHausdorff: !args.flags.has('--no-hausdorff'),
         optimize: !args.flags.has('--no-optimize'),
         keepDefectiveOutput: args.flags.has('--keep-defective'),
         forceTopologyDefect: args.flags.has('--force-topology-defect'),
-        ...(args.flags.has('--optimize-iterations') ? { optimizeIterations: integerFlag(args, '--optimize-iterations') } : {}),
-        ...(args.flags.has('--optimize-tolerance') ? { optimizeTolerance: numberFlag(args, '--optimize-tolerance', 0) } : {}),
-        boundary: boundaryFlag(args, 'free'),
+        optimizeIterations: integerFlag(args, '--optimize-iterations'),
+        optimizeTolerance: numberFlag(args, '--optimize-tolerance'),
+        boundary: boundaryFlag(args),
         // as the native CLI: values below 1 are passed as 0 (InvalidArgument, never "unlimited")
-        maxTriangles: Math.max(0, Math.min(numberFlag(args, '--max-triangles', 32 * 2 ** 20), 1e18)),
-        maxVertices: Math.max(0, Math.min(numberFlag(args, '--max-vertices', 16 * 2 ** 20), 1e18)),
+        maxTriangles: Math.max(0, Math.min(numberFlag(args, '--max-triangles'), 1e18)),
+        maxVertices: Math.max(0, Math.min(numberFlag(args, '--max-vertices'), 1e18)),
       };
       const path = args.positional[0]!;
       const mesh = api.readMesh(await readFileBytes(path), { fileName: path });
@@ -408,12 +536,25 @@ const commands: Record<string, Command> = {
     usage: infoUsage,
     summary:
       'validation and topology report: vertices, faces, components, boundary loops, Euler characteristic, genus, non-manifold edges, degenerate faces, warnings',
-    valueFlags: ['--weld', '--format'],
-    switches: ['--json'],
+    flags: [
+      {
+        name: '--weld',
+        value: 'TOL',
+        help: "also weld vertices closer than this, in the input's units; 0: exact duplicates in STL only",
+        default: 0,
+      },
+      {
+        name: '--format',
+        value: 'NAME',
+        help: 'read as obj, off, stl, stl-ascii, ply, ply-ascii or ply-be; auto: from the content',
+        default: 'auto',
+      },
+      jsonFlag,
+    ],
     async run(args, api) {
       if (args.positional.length !== 1) throw new ConformeshError('InvalidArgument', 'api', `usage: conformesh ${infoUsage}`);
       const path = args.positional[0]!;
-      const weldTolerance = numberFlag(args, '--weld', 0);
+      const weldTolerance = numberFlag(args, '--weld');
       if (weldTolerance < 0) throw new ConformeshError('InvalidArgument', 'api', '--weld needs a tolerance >= 0');
       const format = formatFlag(args);
       const mesh = api.readMesh(await readFileBytes(path), { fileName: path, weldTolerance, ...(format ? { format } : {}) });
@@ -459,6 +600,7 @@ function usage(): string {
   for (const name of Object.keys(commands).sort()) {
     lines.push(`  conformesh ${commands[name]!.usage}`, `      ${commands[name]!.summary}`);
   }
+  lines.push('', '  conformesh COMMAND --help   flags, defaults and units of a command', '  conformesh --version        print the version');
   return lines.join('\n') + '\n';
 }
 
@@ -472,14 +614,22 @@ export async function main(argv: string[]): Promise<number> {
     process.stdout.write(usage());
     return 0;
   }
+  if (name === '--version') {
+    process.stdout.write(`conformesh ${await packageVersion()}\n`);
+    return 0;
+  }
   const command = Object.prototype.hasOwnProperty.call(commands, name) ? commands[name] : undefined;
   if (!command) {
     process.stderr.write(`conformesh: unknown command '${name}'\n\n${usage()}`);
     return 2;
   }
+  if (asksForHelp(argv.slice(1), command.flags)) {
+    process.stdout.write(helpText(command));
+    return 0;
+  }
   const json = argv.includes('--json');
   try {
-    const args = parseArgs(argv.slice(1), command.valueFlags, command.switches);
+    const args = parseArgs(argv.slice(1), command.flags);
     return await command.run(args, await init());
   } catch (e) {
     const err =

@@ -4,7 +4,8 @@ import { execFileSync, spawnSync } from 'node:child_process';
 import { existsSync, readFileSync, rmSync } from 'node:fs';
 import { join } from 'node:path';
 import { fileURLToPath } from 'node:url';
-import { describe, expect, it } from 'vitest';
+import { describe, expect, it, vi } from 'vitest';
+import { main } from '../../dist/cli.js';
 import { init } from '../../dist/index.js';
 import { dataFile, root } from './helpers.js';
 
@@ -77,6 +78,65 @@ describe('package CLI', () => {
         status: nat.status,
       });
     }
+  });
+});
+
+// --help on every command: the flags it prints are those its parser accepts. The candidates are
+// every flag-like string of the CLI's source; the parser itself says which a command accepts.
+describe('package CLI: --help and --version', () => {
+  const commands = [...run(['--help']).stdout.matchAll(/^ {2}conformesh ([a-z0-9]+) /gm)].map((m) => m[1]!);
+  const source = readFileSync(join(root, 'bindings', 'src', 'cli.ts'), 'utf8');
+  const candidates = [...new Set([...source.matchAll(/'(--?[a-z][a-z0-9-]*)'/g)].map((m) => m[1]!))].filter(
+    (f) => f !== '--help' && f !== '-h',
+  );
+
+  /** main() in this process, its output captured (fast: one module for every probe). */
+  async function inProcess(args: string[]) {
+    let out = '';
+    const capture = (chunk: string | Uint8Array) => ((out += String(chunk)), true);
+    const spies = [vi.spyOn(process.stdout, 'write').mockImplementation(capture), vi.spyOn(process.stderr, 'write').mockImplementation(capture)];
+    try {
+      return { status: await main(args), out };
+    } finally {
+      for (const spy of spies) spy.mockRestore();
+    }
+  }
+
+  it('every command: --help and -h exit 0 with one text that lists exactly the flags its parser accepts', async () => {
+    expect(commands).toEqual(expect.arrayContaining(['remesh', 'flatten', 'info', 'refine2d']));
+    for (const command of commands) {
+      const help = run([command, '--help']);
+      expect(help.status, `${command} --help`).toBe(0);
+      expect(help.stdout.startsWith(`usage: conformesh ${command} `)).toBe(true);
+      expect(run([command, '-h']).stdout).toBe(help.stdout);
+      expect((await inProcess([command, 'some-file', '--json', '--help'])).out).toBe(help.stdout);
+      const listed = [...help.stdout.matchAll(/^ {2}(--?[a-z][a-z0-9-]*)/gm)].map((m) => m[1]!).filter((f) => f !== '-h');
+      const accepted: string[] = [];
+      for (const flag of candidates) {
+        const r = await inProcess([command, flag]);
+        if (!r.out.includes(`unknown option ${flag}`)) accepted.push(flag);
+      }
+      expect(accepted.length, command).toBeGreaterThan(0);
+      expect([...listed].sort(), `${command}: flags in --help vs flags the parser accepts`).toEqual([...accepted].sort());
+      const bad = await inProcess([command, '--frobnicate']);
+      expect(bad.status).toBe(1);
+      expect(bad.out).toMatch(/unknown option --frobnicate/);
+    }
+  });
+
+  it.skipIf(!nativeHas('remesh'))('each --help is the native one, word for word: the same flags, units and defaults', () => {
+    for (const command of commands) {
+      const nat = spawnSync(native, [command, '--help'], { encoding: 'utf8' });
+      expect({ command, help: run([command, '--help']).stdout }).toEqual({ command, help: nat.stdout });
+    }
+  });
+
+  it("--version prints package.json's version (as the native CLI does)", () => {
+    const version = JSON.parse(readFileSync(join(root, 'package.json'), 'utf8')).version;
+    const r = run(['--version']);
+    expect(r.status).toBe(0);
+    expect(r.stdout).toBe(`conformesh ${version}\n`);
+    if (existsSync(native)) expect(execFileSync(native, ['--version'], { encoding: 'utf8' })).toBe(r.stdout);
   });
 });
 

@@ -47,9 +47,12 @@ describe('npm package (tarball installed into an empty folder)', () => {
     expect(out).toEqual({ nV: 2930, nF: 5856, same: true, worker: 5856, code: 'ParseError' });
   });
 
-  it('runs the package CLI: npx conformesh --help', () => {
-    const out = execFileSync('npx', ['--offline', 'conformesh', '--help'], { cwd: dir, encoding: 'utf8' });
-    expect(out).toMatch(/conformesh info FILE/);
+  it('runs the package CLI: npx conformesh --help, remesh --help, --version', () => {
+    const npx = (...args: string[]) => execFileSync('npx', ['--offline', 'conformesh', ...args], { cwd: dir, encoding: 'utf8' });
+    expect(npx('--help')).toMatch(/conformesh info FILE/);
+    expect(npx('remesh', '--help')).toMatch(/^ {2}--edge-length-rel R +target edge length/m);
+    const { version } = JSON.parse(readFileSync(join(root, 'package.json'), 'utf8'));
+    expect(npx('--version')).toBe(`conformesh ${version}\n`);
   });
 
   it('its type declarations compile in a strict consumer project', () => {
