@@ -646,12 +646,10 @@ if (self && import.meta.url === (await import('node:url')).pathToFileURL(self).h
   // V8 runs new WebAssembly code in its baseline tier and optimizes a function only once it has
   // run a while; it cannot switch a call that is already running (no on-stack replacement for
   // wasm). A remesh spends seconds inside a few long calls, so the first one ran almost all of
-  // it in baseline code (fandisk at 0.004: 3.1 s against 1.6 s for the later calls). This
-  // process is ours and runs one command: have V8 optimize the whole module from the start
-  // (before main() compiles it), and all of it at once on its background threads: with lazy
-  // compilation (V8's default) each function was optimized on the main thread at its first
-  // call instead (fandisk 0.004, remesh 1.7-3.0 s lazily against 1.04-1.07 s eagerly, process
-  // wall 2.1-3.6 s against 2.1-2.9 s, on 2 busy cores). Not done when the file is imported.
+  // it in baseline code. This process is ours and runs one command: have V8 optimize the whole
+  // module from the start (before main() compiles it), all of it at once on its background
+  // threads, not each function on the main thread at its first call (docs/decisions/0014).
+  // Not done when the file is imported.
   setFlagsFromString('--no-wasm-dynamic-tiering');
   setFlagsFromString('--no-wasm-lazy-compilation');
   process.exitCode = await main(process.argv.slice(2));

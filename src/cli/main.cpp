@@ -36,8 +36,7 @@ void printUsage(std::FILE* out) {
 #if defined(__GLIBC__) && defined(__linux__)
 // Transparent huge pages for the heap. Where the kernel gives them only to memory that asks
 // (THP "madvise", the default of many distributions and VMs), every 4 KiB page a run touches
-// first costs a fault: ~13k faults and 0.10-0.15 s of system time at fandisk 0.004, plus the TLB
-// misses of 4 KiB pages (user time falls too). glibc >= 2.35 asks for huge pages for its heap
+// first costs a fault, plus the TLB misses of 4 KiB pages (docs/decisions/0014). glibc >= 2.35 asks for huge pages for its heap
 // when started with the tunable glibc.malloc.hugetlb=1, which is read only at process start:
 // the CLI starts itself again once with it. Skipped when the user set GLIBC_TUNABLES (theirs
 // win), under valgrind (its tools would lose the child), when CONFORMESH_NO_REEXEC is set, and
@@ -72,7 +71,7 @@ int main(int argc, char** argv) {
 #if defined(__GLIBC__)
   // A run allocates and frees many large buffers (per patch, per stage). glibc maps each one
   // above its mmap threshold afresh and returns freed heap tops to the system, so every reuse
-  // pays the page faults again (on fandisk 0.004 a third of them). Keep freed memory in the
+  // pays the page faults again. Keep freed memory in the
   // heap for the process's life instead: a command runs once and exits.
   mallopt(M_MMAP_THRESHOLD, 32 * 1024 * 1024);
   mallopt(M_TRIM_THRESHOLD, 1 << 30);

@@ -312,10 +312,8 @@ constexpr double kNarrowCutWedge = 45.0 * kPi / 180.0;
 // straightest path of input edges until it meets a curve, so no patch contains a slit. A step
 // onto another curve's dangling end that would make a wedge narrower than kNarrowCutWedge there
 // (and narrower than the vertex had) is taken only when no other step is left (other curve
-// vertices are left to improveCutJunctions: checking them too changed bunny's patches for the
-// worse, 0 -> 2 below the bound at 70k instead of 39k triangles): on a fan of needle faces the
-// straightest edge can reach a curve's dangling end right beside its last edge (camelhead: a
-// 0.81 degree hairpin, meshed down to 1e-9 of the diagonal).
+// vertices are left to improveCutJunctions): on a fan of needle faces the straightest edge can
+// reach a curve's dangling end right beside its last edge, a hairpin (docs/decisions/0005).
 void extendDanglingCurves(const EdgeGraph& g, Segmentation& seg) {
   std::vector<uint32_t> valence(g.vertexCount, 0);
   for (uint32_t e = 0; e < g.edgeCount(); ++e)

@@ -86,9 +86,8 @@ SizingField computeSizing(const EdgeGraph& g, const Segmentation& seg, const Siz
           if (nc++ < 2) curveEdges[nc - 1] = e;
         }
       // Off the curves and on cuts: the surface's curvature. A cut is no crease, and its
-      // polyline's turns (it follows input edges) say nothing about the surface: before session
-      // 7 its vertices took the turn angle instead. On feature and boundary curves: the curve's
-      // curvature (the output follows the curve).
+      // polyline's turns (it follows input edges) say nothing about the surface. On feature and
+      // boundary curves: the curve's curvature (the output follows the curve).
       if (nc == 0 || onlyCuts) {
         kappa = kappaSurface[v];
       } else if (nc == 2 && !seg.vertexCorner[v]) {

@@ -19,18 +19,14 @@ struct OutputEstimate {
   double bytes = 0;      //!< peak heap bytes of the whole remesh call
 };
 
-//! Peak memory per input triangle and per output triangle of a remesh call. Measured as the peak
-//! RSS of the native `conformesh remesh --json` (/usr/bin/time, minus the 3.2 MB of an idle
-//! process), 2 cores, Debian 12, g++ -O3: input side 940–1350 B per input triangle (bunny 69k,
-//! face 52k, fandisk 13k triangles remeshed coarsely, Hausdorff on); output side 155 B per output
-//! triangle (fandisk at 0.01 → 0.0035 · diagonal: 29.8k → 243k triangles, 20.2 → 53.1 MB). Rounded
-//! up for the WASM heap, which grows by doubling vectors and never shrinks.
+//! Peak memory per input triangle and per output triangle of a remesh call: the native CLI's
+//! peak RSS, rounded up for the WASM heap, which grows by doubling vectors and never shrinks
+//! (docs/decisions/0018-output-limits.md).
 constexpr double kBytesPerInputTriangle = 1500.0;
 constexpr double kBytesPerOutputTriangle = 250.0;
 
 //! Real output triangles per equilateral-triangle estimate: the refinement's angle bound and the
-//! curve samples add triangles. Measured at 0.02 · diagonal: fandisk 8040 / 6119 = 1.31,
-//! icosphere 7356 / 5932 = 1.24, fertility 14214 / 7683 = 1.85; the median is used.
+//! curve samples add triangles (the median of three models: docs/decisions/0018).
 constexpr double kTrianglesPerEquilateral = 1.3;
 
 //! Predict the output of remesh from the sizing field (before flattening and refinement).

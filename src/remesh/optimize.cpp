@@ -577,12 +577,9 @@ OptimizeStats optimizePatch(std::vector<double>& xy, std::vector<uint32_t>& tria
       const double x = xy[2 * size_t(v)], y = xy[2 * size_t(v) + 1];
       StarQuality q = starQuality(m, v);
       // candidates, the first accepted wins: the mean of the star's equilateral apexes, the ODT
-      // position, then a half step toward the first (three lifts at most; half steps toward ODT
-      // too gave 0.03 degrees more mean for a fifth of the optimization time at fandisk 0.004).
-      // Each is computed only when the ones before it were rejected: the first is taken about
-      // half the time. The neighbours' centroid (Laplacian) was a candidate until session 6:
-      // after the first two it was never accepted on the 12 models (0 of ~480k tries; 18 % of
-      // the lifts at fandisk 0.004)
+      // position, then a half step toward the first (three lifts at most; others tried gained
+      // too little for their cost: docs/decisions/0011). Each is computed only when the ones
+      // before it were rejected: the first is taken about half the time.
       double eq[2], t[2] = {x, y};
       const bool eqOk = equilateralTarget(m, v, eq);
       bool moved = eqOk && tryMove(m, v, eq[0], eq[1], lift, o.minAngleDeg, q);
@@ -610,9 +607,7 @@ OptimizeStats optimizePatch(std::vector<double>& xy, std::vector<uint32_t>& tria
         for (int c = 0; c < 3; ++c) nextActive[m.tri[3 * size_t(m.starTri[k]) + c]] = 1;
     }
     // flips between passes give the next pass better stars; after the last of several passes a
-    // flip pass would only mend what the moves left (flips after the second of two passes at the
-    // default: within 0.007 degrees of mean on camelhead, blade, bunny and fandisk, and ~6 % of
-    // the optimization's instructions at fandisk 0.004)
+    // flip pass would only mend what the moves left, for no measurable gain
     flips = 0;
     if (!(it > 0 && it + 1 == o.maxIterations)) {
       for (size_t v = 0; v < nv; ++v) changed[v] = active[v] | nextActive[v];

@@ -42,49 +42,36 @@ constexpr double kPi = 3.14159265358979323846;
 constexpr int kConformingRounds = 8;
 // Patches with fewer input faces are not split further. A single triangle always develops
 // isometrically, so splitting down to small patches beats the round-disk fallback, whose
-// distortion on a small curved patch left thousands of triangles below the bound
-// (mech-holes-shark at 0.0102 · diagonal: a 15-face patch; 2,783 below the bound, 8 after).
+// distortion on a small curved patch leaves triangles below the bound (docs/decisions/0009).
 constexpr size_t kMinSplitFaces = 2;
 // Degrees added to the angle bound for the planar refinement (see meshPatch).
 constexpr double kPlanarAngleMargin = 2.0;
-// Angle (degrees) at the new vertex of the triangle an off-center makes with the shortest edge
-// of a bad triangle. Üngör's off-center (2009) puts it just above the bound: fewest Steiner
-// points, but each such triangle stays near the bound, and a graded band of them (around a
-// narrow CAD chamfer, a small feature wedge) is what kept blade's and camelhead's mean min angle
-// below 50 when nothing else was (optimization passes, flips, gradation; issue 9). 45° is
-// halfway between the bound and equilateral; the new vertex is still farther than 1.3 times
-// that edge from its ends (1 / (2 sin 22.5°)), so refinement keeps growing insertion radii (at
-// 60° the ratio is 1: blade then ran into maxInsertions). Measured at the default target
-// (triangles / mean min angle, blade and camelhead): just above the bound 46k / 48.6 and
-// 80k / 48.8; 40° 49k / 49.5 and 82k / 49.4; 45° 52k / 50.5 and 88k / 50.2; 50° 69k / 51.8 and
-// 107k / 51.2; circumcenters 84k / 50.7 and 138k / 50.4. The other ten models change by
-// -0.2..+0.5° for 0-2% more triangles (bunny 8%).
+// Angle (degrees) at the new vertex of the triangle an off-center (Üngör 2009) makes with the
+// shortest edge of a bad triangle: halfway between the bound and equilateral, so graded bands do
+// not stay at the bound, while the new vertex stays 1.3 edges away and insertion radii still grow
+// (docs/decisions/0012-offcenter-apex.md).
 constexpr double kOffcenterApexDeg = 45.0;
 // Passes of the last repair over the triangles still below the bound (a hard cap; a pass that
 // moves nothing ends it). Each pass moves a vertex by a fraction of its star at most, and making
-// room takes a few passes (camelhead at 1.05 % of the diagonal: 2 below after 8, 0 after 32).
+// room takes a few passes.
 constexpr int kRepairRounds = 32;
 // Shortest boundary piece a patch refinement may split, in the sizing's smallest edge length
 // (minEdgeLength, target/10 by default), on the surface: far below any size the output can mean.
 // Near a small angle between two curves the refinements of the two sides can keep splitting
-// each other's segments (each side's concentric shells are not the other's); at 1e-6 target
-// they went on to 1e-9 of the diagonal, every new triangle there below the bound (camelhead: 194k
-// triangles, mostly such shells).
+// each other's segments (each side's concentric shells are not the other's) down to 1e-9 of the
+// diagonal, every new triangle there below the bound (docs/decisions/0002).
 constexpr double kMinSegmentFactor = 1e-2;
 // Two splits of one input edge closer than this (in target edge lengths) are one sample.
 constexpr double kSameSampleFactor = 1e-9;
 // Default minFeatureLength in target edge lengths: a chain of sharp edges shorter than two
 // output edges gets at most one sample inside, too few to carry a feature; on scans such chains
-// are bumps of the noise, and each one needs cuts to join the rest (measured on
-// stanford-bunny: 1046 curves, 188 patches with all sharp edges kept).
+// are bumps of the noise, and each one needs cuts to join the rest (docs/decisions/0006).
 constexpr double kMinFeatureFactor = 2.0;
 // Times a patch's boundary chords may be split where they cross before refinement gives up.
 constexpr int kCrossingRepairs = 8;
 // The last repair may move a star this fraction of the chord tolerance from the input (besides
 // as far as it was; remesh/repair.h): 2.5e-4 of the diagonal by default, below the output's
-// distance to the input elsewhere (~1e-3). At 0.01 camelhead at 0.95 % kept one triangle at
-// 29.6° whose fixing moves took its star from 1.75e-4 to 1.77e-4 of the diagonal; the
-// Hausdorff distances of the repaired outputs did not change (camelhead 0.95–1.05 %).
+// distance to the input elsewhere (~1e-3; docs/decisions/0013).
 constexpr double kRepairDeviationFloor = 0.25;
 // Input edges longer than this times the target edge length are split before segmentation, so
 // cuts along input edges are not sawtooths of needle edges (mesh/precondition.h).
@@ -857,16 +844,14 @@ void Pipeline::optimizeMesh(uint32_t p, const std::vector<uint8_t>& active) {
     return true;
   };
   // the patch's input vertices guard every optimization (optimize.h): no move or flip takes the
-  // output farther from them than the chord tolerance, or farther than it was. The first one was
-  // unguarded until session 6: on face.obj it took the Hausdorff distance from 1.36e-3 to
-  // 1.55e-3 of the diagonal (+14 %, both one-sided maxima at one spot); guarded 1.34e-3,
-  // with the same mean min angle on all 12 models (within 0.05°)
+  // output farther from them than the chord tolerance, or farther than it was: unguarded, the
+  // first one raised the Hausdorff distance for no gain in angles (docs/decisions/0011)
   optimization::SurfaceSamples guard;
   const double tolerance = chordTolerance();
   // a patch within tolerance/2 of a plane needs no guard: the input patch and every output
   // triangle over it (vertices on the input) lie in that slab and share the boundary curves, so
   // no moving can take the output farther than the tolerance from the input there (a CAD model's
-  // flat faces; the guard's bucketing was ~8 % of the optimization at fandisk 0.004)
+  // flat faces), and the guard's bucketing is saved
   if (w.slabHalfWidth < 0) w.slabHalfWidth = slabHalfWidth(w.pm);
   if (!(w.slabHalfWidth <= 0.5 * tolerance)) {
     guard.xy = w.flat.uv;
@@ -1529,7 +1514,7 @@ RemeshResult Pipeline::run(const MeshBuffers& input) {
       // Two rounds in a row no better than the best: what is left does not yield to size (a
       // corner whose planar and 3D angles differ, a cut meeting a curve at a small angle). A
       // single round that is not better is no reason to stop: the spots accumulate, and the
-      // next round often gets there (holes: 1, 1, 0; t13_data: 11, 8, 3, 2, 2, 0). While the
+      // next round often gets there (docs/decisions/0008). While the
       // best round still has a stitch defect the rounds go on to their cap: a non-manifold
       // output is an error, worse than any angle.
       break;

@@ -52,9 +52,7 @@ struct RemeshOptions {
   //! feature, within this width (absolute; < 0: half the smallest edge length the sizing allows,
   //! target/20 by default; 0, the default: keep every patch, so every sharp edge). A strip far
   //! narrower than the output edges (a CAD chamfer) is otherwise meshed below the sizing's floor,
-  //! with a graded band around it: blade.off at the default target has 46k triangles and a mean
-  //! min angle of 48.6° with every feature kept, 22k and 51.0° with -1 (one chamfer border
-  //! dropped, 0.033 wide at a target of 1.3).
+  //! with a graded band around it (docs/decisions/0007-narrow-strips.md).
   double minPatchWidth = 0.0;
   //! User feature edges (input vertex pairs).
   std::vector<std::array<uint32_t, 2>> featureEdges;

@@ -25,9 +25,8 @@ constexpr double kMaxNormalTurnDeg = 30.0;
 // Candidate steps, in the star's shortest edge at the vertex, in 8 tangent directions.
 constexpr double kSteps[] = {0.25, 0.1};
 // A star may get as far from the input as it was, or this fraction of its shortest edge at the
-// vertex, or the caller's deviationFloor (a corner of a few micro-triangles, 1e-6 of the
-// diagonal across, in camelhead's needle fan at input vertex 2955: 5 % of such an edge is far
-// below any distance that shows in the output's, which is ~1e-3 of the diagonal).
+// vertex, or the caller's deviationFloor (a corner of a few micro-triangles in a needle fan,
+// 1e-6 of the diagonal across: 5 % of such an edge is far below any distance that shows).
 constexpr double kDeviationSlack = 0.05;
 // Neighbours of a triangle below the bound make room for it by moving where their own angles
 // under this come closer to it (a squared deficit).
@@ -225,7 +224,7 @@ RepairStats relaxBelowBound(MeshBuffers& out, std::vector<uint32_t>& vertexFace,
     if (moved == 0) {
       // nor do the neighbours: a vertex of a triangle below the bound may raise its star's
       // smallest angle at the price of one more star triangle below the bound (two near-bound
-      // triangles that the next passes can lift, camelhead's needle fan at 1.05 %)
+      // triangles that the next passes can lift)
       for (size_t t : bad)
         for (int c = 0; c < 3; ++c)
           if (isBad(t) && tryImprove(out.triangles[3 * t + c], false, true)) ++moved;

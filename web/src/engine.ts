@@ -168,7 +168,7 @@ export class Engine {
   /**
    * Remesh a small generated part once, in the worker, right after start-up. V8 runs new
    * WebAssembly code in its baseline tier and optimizes hot functions in background threads
-   * while they run. Without this, the first fandisk remesh of a session had 380-620 ms frame
+   * while they run. Without this, the first fandisk remesh after the page loaded had 380-620 ms frame
    * gaps on a 2-core machine; its Chrome trace shows the page's main thread idle through the
    * gap (no frame was scheduled) while two thread-pool threads ran wasm.TopTierCompilation
    * (5.7 s of TurboFan work over the remesh) beside the worker. After this warm-up that

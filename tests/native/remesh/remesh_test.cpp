@@ -96,14 +96,9 @@ TEST_CASE("remesh: bad options and bad input come back as a status") {
 }
 
 // Models of ../shared/data that meet every property with the defaults, and (issue 9) a mean
-// per-triangle min angle of at least 50 degrees where marked (blade.off: 48.6, graded from its
-// 0.033-wide chamfer strip, whose borders are both kept by default; 51.0 with minPatchWidth -1,
-// which drops one; stanford-bunny went from 49.6 to 50.1 when curve samples began to slide,
-// remesh.cpp slideSamples). Some meet the
-// bound at the default target but not at every target near it: with the target at 0.95, 0.98,
-// 1.02, 1.05 % of the diagonal, holes, fertility, stanford-bunny and mech-holes-shark have 0–1
-// triangles below it outside exempt corners (2026-11-28, session 4).
-// camelhead.off (63 of ~196k, ~12 s) is left to the benchmark.
+// per-triangle min angle of at least 50 degrees where marked (not blade.off: graded around its
+// narrow chamfer strip, docs/decisions/0007-narrow-strips.md). camelhead.off is slow: it is left
+// to the benchmark (bench/models.sh).
 TEST_CASE("remesh: shared/data models with the defaults (all but camelhead)") {
   const std::pair<const char*, bool> models[] = {{"fandisk.off", true},        {"3holes.off", true},     {"alligator.obj", true},
                                                  {"blade.off", false},          {"face.obj", true},       {"spot.obj", true},
