@@ -131,6 +131,12 @@ describe('package CLI: --help and --version', () => {
     }
   });
 
+  it('README.md shows `conformesh remesh --help` as the CLI prints it', () => {
+    const readme = readFileSync(join(root, 'README.md'), 'utf8');
+    const block = readme.match(/`conformesh remesh --help`:\n\n```text\n([\s\S]*?)```/)?.[1];
+    expect(block).toBe(run(['remesh', '--help']).stdout);
+  });
+
   it("--version prints package.json's version (as the native CLI does)", () => {
     const version = JSON.parse(readFileSync(join(root, 'package.json'), 'utf8')).version;
     const r = run(['--version']);
