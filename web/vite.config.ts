@@ -1,6 +1,7 @@
 // Vite config of the demo page. The page imports the package exactly as a user would
 // ('conformesh', 'conformesh/three'); here those names resolve to the repository's built package
-// in ../dist (scripts/build.sh), so the page always runs the library built from this tree.
+// in ../dist (scripts/build.sh), so the page always runs the library built from this tree:
+// 'conformesh' to its browser entry, as package.json "exports" resolves it for a browser build.
 import { fileURLToPath } from 'node:url';
 import { defineConfig } from 'vite';
 
@@ -12,7 +13,7 @@ export default defineConfig({
   resolve: {
     alias: [
       { find: /^conformesh\/three$/, replacement: `${dist}three.js` },
-      { find: /^conformesh$/, replacement: `${dist}index.js` },
+      { find: /^conformesh$/, replacement: `${dist}browser.js` },
     ],
   },
   worker: { format: 'es' },

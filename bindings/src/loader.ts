@@ -3,12 +3,13 @@
 //
 // The glue is built with -sENVIRONMENT=web,worker (TOOLCHAIN.md: a `node` environment breaks ES
 // module loading), so:
-//   * in Node we read the .wasm bytes ourselves, through a dynamic import of node:fs/promises that
-//     runs only when Node is detected (bundlers leave it alone);
+//   * in Node we read the .wasm bytes ourselves, with the Node platform's readFile (installed by
+//     the Node entry, platform-node.ts; this file names no Node builtin);
 //   * elsewhere we instantiate from `new URL('./conformesh.wasm', import.meta.url)` ourselves
 //     (streaming when the server sends application/wasm, else from bytes): the glue's own fetch
 //     path has no fallback inside a *module* worker, where `importScripts` is undefined.
 import createConformeshModule from './conformesh.mjs';
+import { platform } from './platform.js';
 import type { RawModule, RawModuleOptions } from './raw.js';
 import { ConformeshError } from './status.js';
 
@@ -50,11 +51,11 @@ async function createRaw(options: InitOptions): Promise<RawModule> {
   });
 
   const fileUrl = options.wasmUrl === undefined || String(options.wasmUrl).startsWith('file:');
+  const readFile = platform().readFile;
   if (options.wasmBinary) {
     moduleOptions.wasmBinary = options.wasmBinary;
-  } else if (isNode() && !options.wasmModule && fileUrl) {
-    const fs = await import('node:fs/promises');
-    moduleOptions.wasmBinary = await fs.readFile(options.wasmUrl === undefined ? wasmLocation() : new URL(String(options.wasmUrl)));
+  } else if (readFile && !options.wasmModule && fileUrl) {
+    moduleOptions.wasmBinary = await readFile(options.wasmUrl === undefined ? wasmLocation() : new URL(String(options.wasmUrl)));
   } else {
     const { wasmModule, wasmUrl } = options;
     moduleOptions.instantiateWasm = (imports, receive) => {
@@ -82,7 +83,9 @@ export function loadRaw(options: InitOptions = {}): Promise<RawModule> {
     pending = createRaw(options).catch((e: unknown) => {
       pending = undefined;
       const message = e instanceof Error ? e.message : String(e);
-      throw new ConformeshError('IoError', 'api', `cannot load the conformesh WebAssembly module: ${message}`);
+      // the browser entry imported in Node (e.g. dist/browser.js by path) fetches a file: URL
+      const hint = isNode() && !platform().readFile ? " (in Node, import 'conformesh' or its Node entry dist/index.js)" : '';
+      throw new ConformeshError('IoError', 'api', `cannot load the conformesh WebAssembly module: ${message}${hint}`);
     });
   }
   return pending;

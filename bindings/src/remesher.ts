@@ -1,6 +1,7 @@
 // createRemesher: the API running in workers (module Web Workers in browsers, worker_threads in
 // Node), so long calls never block the page. Protocol: protocol.ts.
-import { isNode, wasmLocation } from './loader.js';
+import { wasmLocation } from './loader.js';
+import { platform } from './platform.js';
 import type { CallRequest, WorkerMethod, WorkerRequest, WorkerResponse } from './protocol.js';
 import { transferablesOf } from './protocol.js';
 import { ConformeshError, invalidArgument, type StageName } from './status.js';
@@ -58,8 +59,8 @@ export interface RemesherOptions {
   /** Number of workers (default 1). Calls are spread over idle workers. */
   workers?: number;
   /**
-   * Create a worker. Default: `new Worker(new URL('./worker.js', import.meta.url), {type: 'module'})`
-   * in browsers, a worker_threads Worker running node-worker.js in Node.
+   * Create a worker. Default (platform.ts): `new Worker(new URL('./worker.js', import.meta.url),
+   * {type: 'module'})` in browsers, a worker_threads Worker running node-worker.js in Node.
    */
   createWorker?: () => WorkerLike | Promise<WorkerLike>;
   /** Passed to each worker's module loader (e.g. a compiled WebAssembly.Module to skip compiling). */
@@ -86,17 +87,6 @@ export interface Remesher {
   terminate(): void;
 }
 
-async function defaultWorker(): Promise<WorkerLike> {
-  if (isNode()) {
-    const { Worker } = await import('node:worker_threads');
-    // Not a literal `new URL('…', import.meta.url)`: bundlers must not pick up the Node entry.
-    const entry = ['node-worker', 'js'].join('.');
-    // Workers inherit the parent's execArgv; --input-type (node -e scripts) is an error there.
-    const execArgv = process.execArgv.filter((a) => !a.startsWith('--input-type'));
-    return new Worker(new URL(entry, import.meta.url), { execArgv }) as unknown as WorkerLike;
-  }
-  return new Worker(new URL('./worker.js', import.meta.url), { type: 'module' });
-}
 
 interface Job {
   id: number;
@@ -129,7 +119,7 @@ function cancelled(): ConformeshError {
 export function createRemesher(options: RemesherOptions = {}): Remesher {
   const count = options.workers ?? 1;
   if (!Number.isInteger(count) || count < 1 || count > 64) throw invalidArgument('workers must be an integer in [1, 64]');
-  const create = options.createWorker ?? defaultWorker;
+  const create = options.createWorker ?? (() => platform().createWorker());
   const slots: Slot[] = Array.from({ length: count }, () => ({ worker: undefined, job: undefined }));
   const queue: Job[] = [];
   let nextId = 1;
@@ -187,7 +177,7 @@ export function createRemesher(options: RemesherOptions = {}): Remesher {
   let shared: Promise<RemesherOptions['init']> | undefined;
   const initFor = (): Promise<RemesherOptions['init']> => {
     const given = options.init ?? {};
-    if (given.wasmModule || given.wasmBinary || isNode() || typeof WebAssembly === 'undefined' || typeof fetch !== 'function')
+    if (given.wasmModule || given.wasmBinary || platform().name === 'node' || typeof WebAssembly === 'undefined' || typeof fetch !== 'function')
       return Promise.resolve(given);
     shared ??= (async () => {
       const url = given.wasmUrl ?? wasmLocation();

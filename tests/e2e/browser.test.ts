@@ -64,9 +64,10 @@ describe('browser: Vite-built page using the installed package, in headless Chro
     });
     copyFileSync(spot, join(dir, 'out', 'spot.obj'));
     copyFileSync(spot, join(dir, 'spot.obj'));
-    // The same page without a bundler: a plain <script type=module> importing the installed files.
+    // The same page without a bundler: a plain <script type=module> importing the installed files
+    // (the browser entry, what package.json "exports" gives a browser; dist/index.js is Node's).
     writeFileSync(join(dir, 'plain.html'), page.replace('./main.js', './plain.js'));
-    writeFileSync(join(dir, 'plain.js'), main.replace("from 'conformesh'", "from './node_modules/conformesh/dist/index.js'"));
+    writeFileSync(join(dir, 'plain.js'), main.replace("from 'conformesh'", "from './node_modules/conformesh/dist/browser.js'"));
     const out = dir;
     server = createServer((req, res) => {
       const path = normalize(join(out, decodeURIComponent(new URL(req.url ?? '/', 'http://x').pathname)));

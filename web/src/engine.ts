@@ -2,7 +2,7 @@
 // main thread), plus the shapes the views need. Functions the package build does not offer yet
 // (remesh, flatten) are detected here, so the page can say "not available in this build" rather
 // than pretend.
-import { ConformeshError, createRemesher, type MeshInfo, type MeshLike, type ReadMeshResult, type Remesher } from 'conformesh';
+import { ConformeshError, createRemesher, type MeshInfo, type MeshLike, type ReadMeshResult, type Remesher, type RemeshReport } from 'conformesh';
 import { mountingPlate } from './plate.ts';
 
 export type BoundaryCondition = 'corners' | 'free' | 'disk';
@@ -71,8 +71,8 @@ export function patchOfInputFace(patches: FlatPatch[], faceCount: number): Uint3
 
 export interface RemeshOutput {
   mesh: Mesh3;
-  /** Library report: every scalar it returned, by key. */
-  report: Record<string, number | string | boolean>;
+  /** The library's quality report, as it returned it. */
+  report: RemeshReport;
   /** Patch id of every output triangle, when returned. */
   patchOfTriangle?: Uint32Array;
   /** Patch id of every input triangle (the library's segmentation), when returned. */
@@ -138,21 +138,6 @@ function patchesOf(list: unknown): FlatPatch[] {
   });
 }
 
-function scalars(o: unknown): Record<string, number | string | boolean> {
-  const out: Record<string, number | string | boolean> = {};
-  const visit = (x: unknown, prefix: string, depth: number) => {
-    if (!x || typeof x !== 'object' || ArrayBuffer.isView(x)) return;
-    for (const [k, v] of Object.entries(x as Loose)) {
-      const key = prefix ? `${prefix}.${k}` : k;
-      if (typeof v === 'number' || typeof v === 'string' || typeof v === 'boolean') out[key] = v;
-      else if (Array.isArray(v)) out[`${key}.length`] = v.length;
-      else if (depth < 2 && v && typeof v === 'object' && !Array.isArray(v)) visit(v, key, depth + 1);
-    }
-  };
-  visit(o, '', 0);
-  return out;
-}
-
 export class Engine {
   readonly remesher: Remesher;
   readonly canRemesh: boolean;
@@ -174,15 +159,18 @@ export class Engine {
    * (5.7 s of TurboFan work over the remesh) beside the worker. After this warm-up that
    * remesh's tier-up is ~0.2 s and its gaps stay under 65 ms. The compiled module, optimized
    * code included, is shared with a replacement worker (remesher.ts). Errors are ignored (the
-   * real call reports its own).
+   * real call reports its own). Returns the part's report (the page takes the stages the library
+   * reports from it), undefined on failure.
    */
-  async warmUp(): Promise<void> {
-    if (!this.canRemesh) return;
+  async warmUp(): Promise<RemeshReport | undefined> {
+    if (!this.canRemesh) return undefined;
     const fn = (this.remesher as unknown as Loose).remesh as (m: MeshLike, o: unknown) => Promise<unknown>;
     try {
-      await fn.call(this.remesher, mountingPlate(), { targetEdgeLengthRel: 0.03, computeHausdorff: false });
+      const r = (await fn.call(this.remesher, mountingPlate(), { targetEdgeLengthRel: 0.03, computeHausdorff: false })) as Loose;
+      return r.report as RemeshReport | undefined;
     } catch {
       // the module failed to load or the part failed: the user's own call will say why
+      return undefined;
     }
   }
 
@@ -222,9 +210,10 @@ export class Engine {
     const positions = f64(m.positions);
     const triangles = u32(m.triangles);
     if (!positions || !triangles) throw new ConformeshError('InternalError', 'api', 'remesh returned no mesh');
+    if (!raw.report || typeof raw.report !== 'object') throw new ConformeshError('InternalError', 'api', 'remesh returned no report');
     const out: RemeshOutput = {
       mesh: { positions, triangles },
-      report: scalars(pick(raw, 'report', 'quality', 'stats')),
+      report: raw.report as RemeshReport,
       patches: patchesOf(pick(raw, 'patches', 'flat')),
     };
     const uvs = f64(m.uvs);

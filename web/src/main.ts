@@ -1,8 +1,8 @@
 // The conformesh demo page: load a mesh, remesh it in a Web Worker, show the input (features,
 // patches), the flattened domain and the remesh side by side, with the quality report and exports.
 import GUI from 'lil-gui';
-import type { LineSegments, Mesh } from 'three';
-import type { MeshInfo } from 'conformesh';
+import type { LineSegments, Mesh, Points } from 'three';
+import type { MeshInfo, RemeshReport } from 'conformesh';
 import { Engine, NO_PATCH, type FlatPatch, type Mesh3, type Params, type RemeshOutput } from './engine.ts';
 import { objWithUvs, uvAtlas, type UvAtlas } from './atlas.ts';
 import { clearError, showError } from './errors.ts';
@@ -11,9 +11,11 @@ import { minAnglePerTriangle, type AngleStats, type Bounds, type FeaturePreview 
 import { drawHistogram } from './histogram.ts';
 import { mountingPlateOff } from './plate.ts';
 import { FrameProbe } from './probe.ts';
-import { STAGE_BARS, StageProgress, type BarUpdate } from './stages.ts';
+import { GROUPS, QUALITY, entryOf, formatValue, reportedStages, reportValues, stageKey, stageLabel, type Unit, type Value } from './quality.ts';
+import { StageProgress, type BarUpdate } from './stages.ts';
 import {
   NEUTRAL,
+  cornerMarkers,
   edgeLines,
   faceColoredMesh,
   flatScene,
@@ -58,6 +60,8 @@ interface Output {
   minAngles: Float64Array;
   stats: AngleStats;
   seconds: number;
+  /** The angle bound (°) the remesh was asked for. */
+  bound: number;
 }
 let input: Input | undefined;
 let output: Output | undefined;
@@ -76,6 +80,8 @@ const lastRemesh = {
 
 const params: Params = { minAngle: 30, edgeLength: 0.02, featureAngle: 40, chordTolerance: 0.001, boundary: 'free' };
 const toggles = { features: true, patches: true, inputWire: false, layout: true, refined: true, remeshWire: true };
+/** The exempt corners' dots in views 1 and 3. */
+const CORNER_COLOR = 0xff3df0;
 
 function setState(s: string): void {
   document.body.dataset.state = s;
@@ -92,7 +98,8 @@ try {
 engine.version().then(
   (v) => {
     $('#version').textContent = `v${v}`;
-    void engine.warmUp();
+    // the warm-up's report names the stages the library reports: one bar each, before any run
+    void engine.warmUp().then((r) => { if (r) addBars(reportedStages(r)); });
   },
   (e) => showError(errorBox, e, 'loading the conformesh module'),
 );
@@ -112,6 +119,8 @@ let inputWire: LineSegments | undefined;
 let flat: FlatScene | undefined;
 let remeshMesh: Mesh | undefined;
 let remeshWire: LineSegments | undefined;
+let inputCorners: Points | undefined;
+let remeshCorners: Points | undefined;
 
 // the two 3D views share their camera
 let syncing = false;
@@ -164,7 +173,9 @@ function legendText(): void {
   const source = libraryPatchOfFace
     ? 'the library\u2019s segmentation, as in views 2 and 3'
     : `preview: regions between edges sharper than ${params.featureAngle}° (Remesh shows the library\u2019s patches)`;
-  li.textContent = `${input.name} · ${input.mesh.triangles.length / 3} triangles · orange: feature curves · colours: patches (${source})` +
+  const corners = output?.result.report.exemptCorners.length;
+  const cornerText = corners ? ` · magenta dots: ${corners} exempt corner${corners === 1 ? '' : 's'}` : '';
+  li.textContent = `${input.name} · ${input.mesh.triangles.length / 3} triangles · orange: feature curves · colours: patches (${source})${cornerText}` +
     (selected !== undefined && pid ? ` · selected patch ${selected}` : '');
   if (flat) {
     const [a, b] = flat.factorRange;
@@ -177,7 +188,7 @@ function legendText(): void {
       (selected !== undefined ? ` · selected patch ${selected}` : '');
   } else lf.textContent = '';
   lr.textContent = output
-    ? `${output.result.mesh.triangles.length / 3} triangles · triangle min angle: red < 20°, orange < 30°, green ≥ 30° (brighter toward 60°)` +
+    ? `${output.result.mesh.triangles.length / 3} triangles · triangle min angle: red < 20°, orange < 30°, green ≥ 30° (brighter toward 60°)${cornerText}` +
       (selected !== undefined && output.result.patchOfTriangle ? ` · selected patch ${selected}` : '')
     : '';
 }
@@ -206,6 +217,8 @@ function buildInput(frame: boolean): void {
     inputView.scene.add(inputFeatures);
   }
   if (toggles.inputWire) ensureInputWire();
+  inputCorners = undefined;
+  placeInputCorners();
   paintInput();
   if (frame) inputView.frame([inputMesh]);
   inputView.requestRender();
@@ -214,7 +227,22 @@ function buildInput(frame: boolean): void {
 /** After a remesh: the input mesh stays, its patch colours change (rebuilt only when the result brings its own feature curves). */
 function refreshInput(): void {
   if (!inputMesh || output?.result.inputFeatureEdges) buildInput(false);
-  else paintInput();
+  else {
+    placeInputCorners();
+    paintInput();
+  }
+}
+
+/** Dots on the input's exempt corners (the last remesh's report), replacing earlier ones. */
+function placeInputCorners(): void {
+  if (inputCorners) {
+    inputView.scene.remove(inputCorners);
+    inputCorners.geometry.dispose();
+    inputCorners = undefined;
+  }
+  if (!input || !output?.result.report.exemptCorners.length) return;
+  inputCorners = cornerMarkers(cornerPositions(input.mesh, 'vertex'), CORNER_COLOR);
+  inputView.scene.add(inputCorners);
 }
 
 /** The input wireframe is built on first use (it costs as much as the mesh itself). */
@@ -274,7 +302,7 @@ function ensureRemeshWire(): void {
 
 function buildRemesh(): void {
   remeshView.clear();
-  remeshMesh = remeshWire = undefined;
+  remeshMesh = remeshWire = remeshCorners = undefined;
   if (!engine.canRemesh) {
     showUnavailable('#remesh-unavailable', 'Remeshing is not available in this build of conformesh: the package has no remesh binding yet. The Remesh button is disabled; nothing is faked here.');
     return;
@@ -287,6 +315,11 @@ function buildRemesh(): void {
   remeshMesh = faceColoredMesh(output.result.mesh);
   remeshView.scene.add(remeshMesh);
   remeshView.pickable = [remeshMesh];
+  remeshCorners = undefined;
+  if (output.result.report.exemptCorners.length) {
+    remeshCorners = cornerMarkers(cornerPositions(output.result.mesh, 'outputVertex'), CORNER_COLOR);
+    remeshView.scene.add(remeshCorners);
+  }
   paintRemesh();
   // same camera as the input view
   remeshView.camera.position.copy(inputView.camera.position);
@@ -353,81 +386,83 @@ function selectionState() {
 }
 
 // ---------------------------------------------------------------- quality panel
-const fmt = (x: number | undefined, digits = 2, unit = '') => (x === undefined || !Number.isFinite(x) ? '—' : `${x.toFixed(digits)}${unit}`);
-const pct = (x: number | undefined) => (x === undefined || !Number.isFinite(x) ? '—' : `${(100 * x).toFixed(2)}%`);
-
-function qualityTable(): void {
-  const body = $('#quality tbody');
-  body.replaceChildren();
-  const row = (key: string, label: string, a: string, b: string, bad = false) => {
-    const tr = document.createElement('tr');
-    tr.dataset.key = key;
-    const th = document.createElement('td');
-    th.textContent = label;
-    const ta = document.createElement('td');
-    ta.textContent = a;
-    ta.dataset.testid = `q-in-${key}`;
-    const tb = document.createElement('td');
-    tb.textContent = b;
-    tb.dataset.testid = `q-out-${key}`;
-    if (bad) tb.className = 'bad';
-    tr.append(th, ta, tb);
-    body.append(tr);
-  };
-  const i = input, o = output;
-  const target = params.minAngle;
-  row('vertices', 'vertices', i ? String(i.mesh.positions.length / 3) : '—', o ? String(o.result.mesh.positions.length / 3) : '—');
-  row('triangles', 'triangles', i ? String(i.mesh.triangles.length / 3) : '—', o ? String(o.result.mesh.triangles.length / 3) : '—');
-  row('minAngle', 'min angle', fmt(i?.stats.min, 2, '°'), fmt(o?.stats.min, 2, '°'), !!o && o.stats.min < target - 1e-9);
-  row('maxAngle', 'max angle', fmt(i?.stats.max, 2, '°'), fmt(o?.stats.max, 2, '°'));
-  row('meanMin', 'mean triangle min angle', fmt(i?.stats.meanMin, 2, '°'), fmt(o?.stats.meanMin, 2, '°'));
-  row('below30', 'angles < 30°', pct(i?.stats.below30), pct(o?.stats.below30));
-  row('below20', 'angles < 20°', pct(i?.stats.below20), pct(o?.stats.below20));
-  if (i?.info) {
-    row('components', 'components', String(i.info.components), '—');
-    row('genus', 'genus', String(i.info.genus), '—');
-    row('boundaryLoops', 'boundary loops', String(i.info.boundaryLoops), '—');
-  }
-  if (o) {
-    row('time', 'remesh time (worker)', '', `${o.seconds.toFixed(2)} s`);
-    for (const [k, v] of Object.entries(o.result.report)) {
-      const [label, text] = reportRow(k, v);
-      row(`report.${k}`, label, '', text);
+/** The values the table shows, by the keys of its one table (quality.ts QUALITY). */
+function qualityValues(): Map<string, Value> {
+  const v = new Map<string, Value>();
+  if (input) {
+    v.set('input.vertices', input.mesh.positions.length / 3);
+    v.set('input.triangles', input.mesh.triangles.length / 3);
+    v.set('input.minAngle', input.stats.min);
+    v.set('input.maxAngle', input.stats.max);
+    v.set('input.meanMin', input.stats.meanMin);
+    v.set('input.below30', input.stats.below30);
+    v.set('input.below20', input.stats.below20);
+    if (input.info) {
+      v.set('input.components', input.info.components);
+      v.set('input.genus', input.info.genus);
+      v.set('input.boundaryLoops', input.info.boundaryLoops);
     }
   }
+  if (output) {
+    for (const [k, x] of reportValues(output.result.report)) v.set(k, x);
+    v.set('page.seconds', output.seconds);
+  }
+  return v;
 }
 
-// Labels and units of the library report's keys (others are shown as they come).
-const REPORT_LABELS: Record<string, [string, 'deg' | 'pct' | 'frac' | 'rel' | 's' | 'n']> = {
-  minAngle: ['library: min angle', 'deg'],
-  maxAngle: ['library: max angle', 'deg'],
-  meanMinAngle: ['library: mean min angle', 'deg'],
-  minAngleOutsideExempt: ['min angle away from exempt corners', 'deg'],
-  trianglesBelowBoundOutsideExempt: ['triangles below bound (not at exempt corners)', 'n'],
-  'exemptCorners.length': ['exempt corners (input angle < bound)', 'n'],
-  pctBelow20: ['library: angles < 20°', 'pct'],
-  pctBelow26: ['library: angles < 26°', 'pct'],
-  pctBelow30: ['library: angles < 30°', 'pct'],
-  delaunayFraction: ['Delaunay edges (3D)', 'frac'],
-  hausdorffRel: ['Hausdorff distance (× diagonal)', 'rel'],
-  maxDistanceToInputRel: ['max vertex distance to input (× diag.)', 'rel'],
-  meanEdgeLength: ['mean edge length', 'n'],
-  targetEdgeLength: ['target edge length', 'n'],
-};
+/** A value shown in red: the bound missed away from exempt corners, or the topology changed. */
+function isBad(key: string, x: Value): boolean {
+  const bound = output?.bound ?? params.minAngle;
+  if (key === 'minAngleOutsideExempt') return typeof x === 'number' && x < bound - 1e-9;
+  if (key === 'trianglesBelowBoundOutsideExempt') return typeof x === 'number' && x > 0;
+  if (key === 'topologyPreserved') return x === false;
+  return false;
+}
 
-function reportRow(key: string, v: number | string | boolean): [string, string] {
-  const known = REPORT_LABELS[key];
-  const secs = key.startsWith('seconds.');
-  const label = known?.[0] ?? (secs ? `time: ${key.slice(8)}` : key);
-  if (typeof v !== 'number') return [label, String(v)];
-  const unit = known?.[1] ?? (secs ? 's' : 'n');
-  switch (unit) {
-    case 'deg': return [label, `${v.toFixed(2)}°`];
-    case 'pct': return [label, `${v.toFixed(2)}%`];
-    case 'frac': return [label, `${(100 * v).toFixed(2)}%`];
-    case 'rel': return [label, v < 0 ? 'not computed' : v.toExponential(2)];
-    case 's': return [label, `${v.toFixed(3)} s`];
-    default: return [label, Number.isInteger(v) ? String(v) : v.toPrecision(4)];
+function qualityTable(): void {
+  const table = $('#quality');
+  for (const old of table.querySelectorAll('tbody')) old.remove();
+  const values = qualityValues();
+  const unknown = [...values.keys()].filter((k) => !entryOf(k));
+  for (const { group, title } of GROUPS) {
+    const body = document.createElement('tbody');
+    body.dataset.group = group;
+    const head = document.createElement('tr');
+    head.className = 'group';
+    const th = document.createElement('th');
+    th.colSpan = 2;
+    th.textContent = title;
+    head.append(th);
+    body.append(head);
+    const entries: { key: string; label: string; unit: Unit; hint?: string; known: boolean }[] = QUALITY.filter((e) => e.group === group && values.get(e.key) !== undefined)
+      .map((e) => ({ ...e, known: true }));
+    // a key the library added and the table does not know yet: shown, in words, and flagged
+    if (group === 'pipeline') for (const key of unknown) entries.push({ key, label: stageLabel(key), unit: 'text', known: false });
+    for (const e of entries) {
+      const x = values.get(e.key);
+      const tr = document.createElement('tr');
+      tr.dataset.key = e.key;
+      if (!e.known) tr.dataset.unknown = 'true';
+      if (e.hint) tr.title = e.hint;
+      const name = document.createElement('td');
+      name.textContent = e.label;
+      const value = document.createElement('td');
+      value.textContent = formatValue(e.unit, x);
+      value.dataset.testid = `q-${e.key}`;
+      if (isBad(e.key, x)) value.className = 'bad';
+      tr.append(name, value);
+      body.append(tr);
+    }
+    if (entries.length === 0) {
+      const tr = document.createElement('tr');
+      const td = document.createElement('td');
+      td.colSpan = 2;
+      td.className = 'muted';
+      td.textContent = group === 'input' ? 'load a mesh' : 'press Remesh';
+      tr.append(td);
+      body.append(tr);
+    }
+    table.append(body);
   }
 }
 
@@ -435,53 +470,142 @@ function histogram(): void {
   drawHistogram($<HTMLCanvasElement>('#histogram'), input?.angles, output?.angles, params.minAngle);
 }
 
+// ---------------------------------------------------------------- exempt corners
+/** The list of the report's exempt corners (input corners sharper than the bound). */
+function exemptList(): void {
+  const list = $('#exempt-corners');
+  list.replaceChildren();
+  const corners = output?.result.report.exemptCorners;
+  const note = $('#exempt-note');
+  if (!corners) {
+    note.textContent = input ? 'Remesh to see them.' : '';
+    return;
+  }
+  note.textContent = corners.length
+    ? `${corners.length} input corner${corners.length === 1 ? '' : 's'} below the ${output!.bound}° bound: the triangles touching ${corners.length === 1 ? 'it' : 'them'} cannot meet it. Magenta dots in views 1 and 3.`
+    : `none: every triangle is held to the ${output!.bound}° bound.`;
+  for (const c of corners) {
+    const li = document.createElement('li');
+    li.dataset.vertex = String(c.vertex);
+    li.dataset.outputVertex = String(c.outputVertex);
+    li.dataset.angle = String(c.angle);
+    li.textContent = `input vertex ${c.vertex} (output ${c.outputVertex}): corner of ${c.angle.toFixed(2)}°, ${c.triangles.length} triangle${c.triangles.length === 1 ? '' : 's'} exempt`;
+    list.append(li);
+  }
+}
+
+/** Positions (3 per corner) of the exempt corners' vertices in a mesh. */
+function cornerPositions(mesh: Mesh3, which: 'vertex' | 'outputVertex'): Float64Array {
+  const corners = output?.result.report.exemptCorners ?? [];
+  const out = new Float64Array(3 * corners.length);
+  corners.forEach((c, i) => out.set(mesh.positions.subarray(3 * c[which], 3 * c[which] + 3), 3 * i));
+  return out;
+}
+
 // ---------------------------------------------------------------- progress
 const progressList = $('#progress');
+const runStatus = $('#run-status');
 const stageProgress = new StageProgress();
 /** The progress events of the last remesh as received, and the bar values shown (for the tests). */
 const progressLog: { events: { stage: string; fraction: number }[]; bars: BarUpdate[] } = { events: [], bars: [] };
-const bars = new Map<string, { li: HTMLLIElement; bar: HTMLDivElement; label: HTMLSpanElement }>();
-for (const { stage, title } of STAGE_BARS) {
-  const li = document.createElement('li');
-  li.title = title;
-  const name = document.createElement('span');
-  name.textContent = stage;
-  const outer = document.createElement('div');
-  outer.className = 'bar';
-  const bar = document.createElement('div');
-  outer.append(bar);
-  const label = document.createElement('span');
-  label.textContent = '';
-  li.append(name, outer, label);
-  li.dataset.stage = stage;
-  progressList.append(li);
-  bars.set(stage, { li, bar, label });
+const bars = new Map<string, { li: HTMLLIElement; bar: HTMLDivElement; time: HTMLDivElement; label: HTMLSpanElement }>();
+
+/** Bars for these library stages (new ones only), in the order stageProgress keeps. */
+function addBars(stages: readonly string[]): void {
+  if (stageProgress.adopt(stages).length === 0) return;
+  syncBars();
 }
+
+/** One <li> per stage of stageProgress, in its order. */
+function syncBars(): void {
+  for (const key of stageProgress.order) {
+    if (bars.has(key)) continue;
+    const li = document.createElement('li');
+    const name = document.createElement('span');
+    name.textContent = stageLabel(stageProgress.names.get(key)!);
+    const seconds = entryOf(`seconds.${stageProgress.names.get(key)}`);
+    li.title = seconds?.label.replace(/^time: /, '') ?? name.textContent;
+    const outer = document.createElement('div');
+    outer.className = 'bar';
+    const bar = document.createElement('div');
+    const time = document.createElement('div');
+    time.className = 'time';
+    outer.append(bar, time);
+    const label = document.createElement('span');
+    li.append(name, outer, label);
+    li.dataset.stage = key;
+    bars.set(key, { li, bar, time, label });
+  }
+  progressList.replaceChildren(...stageProgress.order.map((k) => bars.get(k)!.li));
+}
+
 function resetProgress(): void {
   stageProgress.reset();
   progressLog.events = [];
   progressLog.bars = [];
-  for (const { li, bar, label } of bars.values()) {
+  for (const { li, bar, time, label } of bars.values()) {
     li.className = '';
     bar.style.width = '0';
+    time.style.width = '0';
     label.textContent = '';
   }
 }
-/** The result is in: every stage has ended (the bars not yet full are completed). */
-function finishProgress(): void {
-  for (const u of stageProgress.update(STAGE_BARS[STAGE_BARS.length - 1]!.stage, 1)) showBar(u);
+
+/** The result is in: every stage has ended; each bar gets its stage's time from the report. */
+function finishProgress(report: RemeshReport): void {
+  addBars(reportedStages(report));
+  for (const u of stageProgress.finish()) showBar(u);
+  const total = report.seconds.total;
+  for (const stage of reportedStages(report)) {
+    const b = bars.get(stageKey(stage))!;
+    const s = (report.seconds as unknown as Record<string, number>)[stage]!;
+    b.label.textContent = `${s.toFixed(2)} s`;
+    b.time.style.width = `${(100 * Math.min(1, total > 0 ? s / total : 0)).toFixed(1)}%`;
+    b.li.title = `${entryOf(`seconds.${stage}`)?.label.replace(/^time: /, '') ?? stage}: ${s.toFixed(3)} s of ${total.toFixed(3)} s`;
+  }
 }
+
 function showBar(u: BarUpdate): void {
   progressLog.bars.push(u);
   const b = bars.get(u.stage)!;
   b.bar.style.width = `${(100 * u.value).toFixed(1)}%`;
   b.label.textContent = `${Math.floor(100 * u.value)}%`;
-  b.li.className = u.value >= 1 ? 'done' : '';
+  b.li.className = u.value >= 1 ? 'done' : 'running';
 }
+
 /** A library progress event (fraction: of the whole call) shown as the stage's own progress. */
 function setProgress(stage: string, fraction: number): void {
   progressLog.events.push({ stage, fraction });
-  for (const u of stageProgress.update(stage, fraction)) showBar(u);
+  const known = stageProgress.values.has(stageKey(stage));
+  const updates = stageProgress.update(stage, fraction);
+  if (!known) syncBars();
+  for (const u of updates) showBar(u);
+  run.stage = stage;
+  run.fraction = Math.max(run.fraction, fraction);
+  showRunStatus();
+}
+
+/** The running remesh, for the status line: its start, the last stage and overall fraction reported. */
+const run = { startAt: NaN, stage: '', fraction: 0, timer: 0 as ReturnType<typeof setInterval> | 0 };
+
+function showRunStatus(): void {
+  if (!running) return;
+  const elapsed = (performance.now() - run.startAt) / 1000;
+  const stage = run.stage ? `${stageLabel(run.stage)} · ` : 'starting · ';
+  runStatus.textContent = `${stage}${Math.floor(100 * run.fraction)}% · ${elapsed.toFixed(1)} s`;
+}
+
+/** The status line while a remesh runs (ticks every 100 ms) and after it ends. */
+function startRunStatus(): void {
+  Object.assign(run, { startAt: performance.now(), stage: '', fraction: 0 });
+  showRunStatus();
+  run.timer = setInterval(showRunStatus, 100);
+}
+
+function endRunStatus(text: string): void {
+  if (run.timer) clearInterval(run.timer);
+  run.timer = 0;
+  runStatus.textContent = text;
 }
 
 // ---------------------------------------------------------------- loading
@@ -496,7 +620,8 @@ function updateButtons(): void {
   rb.disabled = !input || !engine.canRemesh || !!running;
   rb.title = engine.canRemesh ? '' : 'remesh is not available in this build of conformesh';
   $<HTMLButtonElement>('#cancel-button').disabled = !running;
-  for (const b of document.querySelectorAll<HTMLButtonElement>('#export button')) {
+  $<HTMLButtonElement>('#download-report').disabled = !output;
+  for (const b of document.querySelectorAll<HTMLButtonElement>('#export button[data-format]')) {
     const f = b.dataset.format;
     b.disabled = !output || (f === 'obj-uv' && !output.atlas);
     b.title = f === 'obj-uv' && output && !output.atlas ? 'this remesh result carries no planar patches to make UVs from' : '';
@@ -544,11 +669,13 @@ async function load(bytes: Uint8Array, name: string): Promise<void> {
     const findings = (info?.warnings ?? []).map((w) => (typeof w === 'string' ? w : (w as { message: string }).message));
     notice(findings.length ? `Topology findings (the remesher repairs or rejects these): ${findings.join('; ')}` : undefined);
     resetProgress();
+    endRunStatus('');
     const tBuild = performance.now();
     buildInput(true);
     buildFlat();
     buildRemesh();
     qualityTable();
+    exemptList();
     histogram();
     legend();
     updateButtons();
@@ -651,13 +778,16 @@ async function remesh(): Promise<void> {
   setState('remeshing');
   probe.reset();
   const t0 = performance.now();
+  const bound = params.minAngle;
+  startRunStatus();
   try {
     const result = await engine.remesh(input.mesh, params, input.bounds.diagonal, (p) => setProgress(p.stage, p.fraction), ac.signal);
     const resultAt = performance.now();
     const seconds = (resultAt - t0) / 1000;
     const gap = probe.read();
     if (seq !== loadSeq) return;
-    finishProgress();
+    finishProgress(result.report);
+    endRunStatus(`done in ${seconds.toFixed(2)} s (library ${result.report.seconds.total.toFixed(2)} s)`);
     const a = await analyzer.analyze(result.mesh, { angles: true });
     if (seq !== loadSeq) return;
     const t1 = performance.now();
@@ -668,7 +798,7 @@ async function remesh(): Promise<void> {
       // the remesh stands; only the UV export is off (and the page says why)
       showError(errorBox, e, 'building the UV atlas of the remesh');
     }
-    output = { result, atlas, angles: a.angles!, minAngles: minAnglePerTriangle(a.angles!), stats: a.stats!, seconds };
+    output = { result, atlas, angles: a.angles!, minAngles: minAnglePerTriangle(a.angles!), stats: a.stats!, seconds, bound };
     if (result.inputPatchOfFace) libraryPatchOfFace = result.inputPatchOfFace;
     selected = undefined;
     // Applying the result is split into tasks, one view per frame, so the page keeps drawing
@@ -702,7 +832,7 @@ async function remesh(): Promise<void> {
     step('remeshWire', () => { if (toggles.remeshWire) ensureRemeshWire(); });
     await drawn(remeshView);
     if (seq !== loadSeq) return;
-    step('panels', () => { qualityTable(); histogram(); legend(); });
+    step('panels', () => { qualityTable(); exemptList(); histogram(); legend(); });
     await Promise.all(views.map((v) => frameOrTimeout(v)));
     if (seq !== loadSeq) return;
     const appliedAt = performance.now();
@@ -714,7 +844,9 @@ async function remesh(): Promise<void> {
   } catch (e) {
     if (seq !== loadSeq) return;
     const cancelled = (e as { code?: string }).code === 'Cancelled';
-    for (const b of bars.values()) if (b.li.className !== 'done' && b.bar.style.width !== '0px' && b.bar.style.width !== '0') b.li.className = 'failed';
+    for (const b of bars.values()) if (b.li.className === 'running') b.li.className = 'failed';
+    const after = `after ${((performance.now() - t0) / 1000).toFixed(1)} s`;
+    endRunStatus(cancelled ? `cancelled ${after}` : `failed ${after}`);
     if (cancelled) {
       notice('Remesh cancelled.');
       setState('loaded');
@@ -739,6 +871,17 @@ function download(bytes: Uint8Array, name: string): void {
   a.click();
   a.remove();
   setTimeout(() => URL.revokeObjectURL(url), 10_000);
+}
+
+/** The report as JSON (typed arrays as arrays): what the library returned, nothing added. */
+function reportJson(report: RemeshReport): string {
+  return JSON.stringify(report, (_k, v: unknown) => (ArrayBuffer.isView(v) ? Array.from(v as unknown as ArrayLike<number>) : v), 2);
+}
+
+function downloadReport(): void {
+  if (!output || !input) return;
+  const base = input.name.replace(/\.[^.]*$/, '') + '-remesh';
+  download(new TextEncoder().encode(reportJson(output.result.report) + '\n'), `${base}-report.json`);
 }
 
 async function exportAs(format: string): Promise<void> {
@@ -782,9 +925,10 @@ gui.add(params, 'boundary', { 'free (u = 0)': 'free', 'corner-preserving': 'corn
 
 $('#remesh-button').addEventListener('click', () => void remesh());
 $('#cancel-button').addEventListener('click', () => running?.abort());
-for (const b of document.querySelectorAll<HTMLButtonElement>('#export button')) {
+for (const b of document.querySelectorAll<HTMLButtonElement>('#export button[data-format]')) {
   b.addEventListener('click', () => void exportAs(b.dataset.format!));
 }
+$('#download-report').addEventListener('click', downloadReport);
 $<HTMLInputElement>('#file-input').addEventListener('change', (e) => {
   const input = e.target as HTMLInputElement;
   const file = input.files?.[0];
@@ -857,11 +1001,20 @@ window.conformeshPage = {
   renderAll: () => views.forEach((v) => v.renderNow()),
   loadSample,
   selectionState,
+  /** The last remesh's report as the library returned it (typed arrays as arrays), or null. */
+  lastReport: () => (output ? (JSON.parse(reportJson(output.result.report)) as unknown) : null),
+  /** The exempt-corner dots drawn in the input and remesh views: their positions (3 per dot). */
+  cornerDots: () => ({
+    input: inputCorners ? Array.from(inputCorners.geometry.getAttribute('position').array) : [],
+    remesh: remeshCorners ? Array.from(remeshCorners.geometry.getAttribute('position').array) : [],
+    inScene: { input: !!inputCorners?.parent, remesh: !!remeshCorners?.parent },
+  }),
 };
 
 buildFlat();
 buildRemesh();
 qualityTable();
+exemptList();
 histogram();
 legend();
 updateButtons();

@@ -10,6 +10,8 @@ import {
   Mesh,
   MeshBasicMaterial,
   MeshStandardMaterial,
+  Points,
+  PointsMaterial,
   type Object3D,
 } from 'three';
 import { toBufferGeometry } from 'conformesh/three';
@@ -96,13 +98,25 @@ export function edgeLines(positions: ArrayLike<number>, pairs: Uint32Array, colo
 }
 
 /**
+ * Dots of a fixed size on screen at the given points (3 coordinates each), drawn over the
+ * surface (no depth test: a corner behind the mesh is still shown). The exempt corners.
+ */
+export function cornerMarkers(points: ArrayLike<number>, color: number): Points {
+  const g = new BufferGeometry();
+  g.setAttribute('position', new BufferAttribute(Float32Array.from(points), 3));
+  const dots = new Points(g, new PointsMaterial({ color, size: 9, sizeAttenuation: false, depthTest: false, transparent: true }));
+  dots.renderOrder = 10;
+  return dots;
+}
+
+/**
  * One small object of every material kind a view draws (same builders, so the same shader
  * programs): a viewport compiles them at start-up and keeps them, so that a remesh's new scenes
  * never wait for a shader compile (with a software GL, 250-700 ms per view).
  */
 export function materialSamples(mode: '3d' | '2d'): Object3D[] {
   const tri: Mesh3 = { positions: Float64Array.of(0, 0, 0, 1, 0, 0, 0, 1, 0), triangles: Uint32Array.of(0, 1, 2) };
-  if (mode === '3d') return [faceColoredMesh(tri), wireframe(tri, 0, 0.5), edgeLines(tri.positions, Uint32Array.of(0, 1), 0)];
+  if (mode === '3d') return [faceColoredMesh(tri), wireframe(tri, 0, 0.5), edgeLines(tri.positions, Uint32Array.of(0, 1), 0), cornerMarkers(tri.positions, 0)];
   const uv = Float64Array.of(0, 0, 1, 0, 0, 1);
   const scene = flatScene([
     { id: 0, layout: { uv, triangles: tri.triangles, factor: Float64Array.of(0, 1, 0) }, refined: { uv, triangles: tri.triangles } },

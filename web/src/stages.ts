@@ -1,70 +1,112 @@
-// The remesh progress bars. The library reports (stage, fraction) with fraction the progress of
-// the whole call: bindings/remesh.cpp overallProgress gives each stage an interval of [0, 1], and
-// the calls are made in pipeline order (src/remesh/remesh.cpp Pipeline::run). A bar shows its
-// stage's own progress, 0 -> 100 % over the stage's interval.
+// The remesh stage bars. The stages come from the library: those its progress events name, and
+// those whose times its report gives (report.seconds); a stage is one bar whichever of the two
+// names it ('curve-mesh' / 'curveMesh', quality.ts stageKey). The library reports (stage,
+// fraction) with fraction the progress of the whole call: bindings/remesh.cpp overallProgress
+// gives each reporting stage an interval of [0, 1], and a bar shows its stage's own progress,
+// 0 -> 100 % over that interval. After the call every bar is full and shows the stage's time.
+import { stageKey } from './quality.ts';
 
-export interface StageBar {
+export interface StageInterval {
   /** The library's stage name (ProgressEvent.stage). */
   stage: string;
-  /** What the bar covers, for its tooltip. */
-  title: string;
   /** The stage's interval of the overall fraction (bindings/remesh.cpp overallProgress). */
   lo: number;
   hi: number;
 }
 
 /**
- * In pipeline order. 'lift' and 'stitch' have intervals in overallProgress but never report: the
- * lift and the optimization run inside each patch's refinement, and stitching inside the
- * refinement's certificate rounds. They get no bar of their own (refine reaches 0.85, then the
- * report's single event is 1).
+ * The intervals of bindings/remesh.cpp overallProgress (a test compares them with it). Only for
+ * turning the overall fraction into a stage's own: which bars exist is up to the library.
  */
-export const STAGE_BARS: readonly StageBar[] = [
-  { stage: 'validate', title: 'check and repair the input', lo: 0.0, hi: 0.02 },
-  { stage: 'segment', title: 'feature curves, cuts into disk patches, sizing field', lo: 0.02, hi: 0.1 },
-  { stage: 'flatten', title: 'conformal flattening of every patch', lo: 0.1, hi: 0.45 },
-  { stage: 'curve-mesh', title: 'samples along the feature and cut curves', lo: 0.45, hi: 0.5 },
-  { stage: 'refine', title: 'planar Delaunay refinement per patch, with the lift to 3D, the optimization and the stitching (certificate rounds)', lo: 0.5, hi: 0.85 },
-  { stage: 'report', title: 'quality report (angles, distances, topology)', lo: 0.96, hi: 1.0 },
+export const STAGE_INTERVALS: readonly StageInterval[] = [
+  { stage: 'validate', lo: 0.0, hi: 0.02 },
+  { stage: 'segment', lo: 0.02, hi: 0.1 },
+  { stage: 'flatten', lo: 0.1, hi: 0.45 },
+  { stage: 'curve-mesh', lo: 0.45, hi: 0.5 },
+  { stage: 'refine', lo: 0.5, hi: 0.85 },
+  { stage: 'lift', lo: 0.85, hi: 0.92 },
+  { stage: 'stitch', lo: 0.92, hi: 0.96 },
+  { stage: 'report', lo: 0.96, hi: 1.0 },
 ];
 
-/** A stage's own progress in [0, 1] from the call's overall fraction. */
-export function stageFraction(bar: StageBar, overall: number): number {
-  const f = (overall - bar.lo) / (bar.hi - bar.lo);
+/** A stage's own progress in [0, 1] from the call's overall fraction (undefined: no known interval). */
+export function stageFraction(stage: string, overall: number): number | undefined {
+  const i = STAGE_INTERVALS.find((b) => stageKey(b.stage) === stageKey(stage));
+  if (!i) return undefined;
+  const f = (overall - i.lo) / (i.hi - i.lo);
   return Math.min(1, Math.max(0, Number.isFinite(f) ? f : 0));
 }
 
 /** One bar's value as shown, in the order shown (for the end-to-end test). */
 export interface BarUpdate {
+  /** stageKey of the stage. */
   stage: string;
   value: number;
 }
 
 /**
- * Bar values from the events of one call: an event of stage k sets bar k to its own fraction
- * (never backwards) and completes the bars before k (that stage has ended). Events of stages
- * without a bar are ignored. Returns the bar updates it made.
+ * Bar values of one call. The bars are in the library's order: that of the last report's times,
+ * with a stage first seen in an event added at the end. An event of stage k sets bar k to its own
+ * fraction (never backwards; a stage without an interval shows no fraction until it ends) and
+ * completes the bars before k (those stages have ended).
  */
 export class StageProgress {
-  readonly values: number[] = STAGE_BARS.map(() => 0);
+  /** stageKey of every bar, in order, and the library name it was first seen under. */
+  readonly order: string[] = [];
+  readonly names = new Map<string, string>();
+  readonly values = new Map<string, number>();
+
+  /** Add the bars of these stages (library names), in this order, before any stage added later. */
+  adopt(stages: readonly string[]): string[] {
+    const added: string[] = [];
+    let at = 0;
+    for (const name of stages) {
+      const key = stageKey(name);
+      const i = this.order.indexOf(key);
+      if (i >= 0) {
+        at = Math.max(at, i + 1);
+        continue;
+      }
+      this.order.splice(at++, 0, key);
+      this.names.set(key, name);
+      this.values.set(key, 0);
+      added.push(key);
+    }
+    return added;
+  }
 
   reset(): void {
-    this.values.fill(0);
+    for (const k of this.order) this.values.set(k, 0);
   }
 
   update(stage: string, overall: number): BarUpdate[] {
-    const k = STAGE_BARS.findIndex((b) => b.stage === stage);
-    if (k < 0) return [];
+    const key = stageKey(stage);
+    if (!this.values.has(key)) this.adopt([...this.order.map((k) => this.names.get(k)!), stage]);
+    const k = this.order.indexOf(key);
     const changed: BarUpdate[] = [];
     for (let j = 0; j < k; ++j) {
-      if (this.values[j]! < 1) {
-        this.values[j] = 1;
-        changed.push({ stage: STAGE_BARS[j]!.stage, value: 1 });
+      const before = this.order[j]!;
+      if (this.values.get(before)! < 1) {
+        this.values.set(before, 1);
+        changed.push({ stage: before, value: 1 });
       }
     }
-    const v = Math.max(this.values[k]!, stageFraction(STAGE_BARS[k]!, overall));
-    this.values[k] = v;
-    changed.push({ stage, value: v });
+    const own = stageFraction(stage, overall);
+    const v = Math.max(this.values.get(key)!, own ?? 0);
+    this.values.set(key, v);
+    changed.push({ stage: key, value: v });
+    return changed;
+  }
+
+  /** The call has ended: every bar full. */
+  finish(): BarUpdate[] {
+    const changed: BarUpdate[] = [];
+    for (const key of this.order) {
+      if (this.values.get(key)! < 1) {
+        this.values.set(key, 1);
+        changed.push({ stage: key, value: 1 });
+      }
+    }
     return changed;
   }
 }
