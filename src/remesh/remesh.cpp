@@ -23,6 +23,7 @@
 #include "mesh/precondition.h"
 #include "remesh/optimize.h"
 #include "remesh/repair.h"
+#include "remesh/spot_field.h"
 #include "remesh/stitch_defects.h"
 #include "remesh/limits.h"
 #include "core/detmath.h"
@@ -170,10 +171,6 @@ double elapsed(std::chrono::steady_clock::time_point& t) {
 }
 
 // A spot where the 3D angle certificate asks for smaller planar triangles: h <= h0 + |x − c|/2.
-struct Spot {
-  double x, y, h;
-};
-
 // One patch: its sub-mesh, flattening, boundary condition, sizing, and its latest meshing.
 struct PatchWork {
   F::PatchMesh pm;
@@ -741,6 +738,7 @@ void Pipeline::meshPatch(uint32_t p, bool splitSegments) {
   // from the face of the previous query (the refinement asks about nearby points in a row).
   const Pullback& pb = w.flat.pullback;
   int sizingFace = -1;
+  const SpotField spots(w.spots);
   ro.sizing = [&](double x, double y) {
     int fv[3];
     double b[3];
@@ -750,9 +748,7 @@ void Pipeline::meshPatch(uint32_t p, bool splitSegments) {
       h += b[c] * w.hSub[uint32_t(fv[c])];
       s += b[c] * w.scaleSub[uint32_t(fv[c])];
     }
-    double hp = kSizeFactor * h * s;
-    for (const Spot& sp : w.spots) hp = std::min(hp, sp.h + 0.5 * dmath::hypot(x - sp.x, y - sp.y));
-    return hp;
+    return spots.size(x, y, kSizeFactor * h * s);
   };
   double area3 = 0;
   for (uint32_t f : w.pm.faceInput) area3 += g_.faceArea(f);
