@@ -26,7 +26,7 @@ printf "%-22s %7s %7s %5s %5s %6s %6s %4s %6s %7s %6s %8s %5s %6s\n" model tris 
 for m in $MODELS; do
   b=${m%.*}
   s=$(date +%s%N)
-  timeout 300 $BIN remesh "$DATA"/$m -o $OUT/$b.obj --json "$@" > $OUT/$b.json 2> $OUT/$b.err
+  timeout ${TIMEOUT:-300} $BIN remesh "$DATA"/$m -o $OUT/$b.obj --json "$@" > $OUT/$b.json 2> $OUT/$b.err
   rc=$?
   e=$(date +%s%N)
   if [ $rc -ne 0 ] && [ ! -s $OUT/$b.json ]; then echo "$b FAILED rc=$rc $(head -c 200 $OUT/$b.err)"; continue; fi

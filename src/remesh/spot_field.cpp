@@ -47,13 +47,11 @@ double SpotField::size(double x, double y, double bound) const {
     }
   };
   if (spots_.empty()) return best;
+  // the cell of the query's nearest point in the grid's box: projecting onto a convex box
+  // shortens no distance to a point in it, so the ring bounds below hold from there too
   const double fx = std::floor((x - x0_) / cell_), fy = std::floor((y - y0_) / cell_);
-  // a query outside the spots' box (or no finite bound to stop at): every spot
-  if (!(fx >= 0 && fx < nx_ && fy >= 0 && fy < ny_) || !std::isfinite(best)) {
-    for (size_t c = 0; c + 1 < start_.size(); ++c) visit(c);
-    return best;
-  }
-  const long qx = long(fx), qy = long(fy);
+  if (std::isnan(fx) || std::isnan(fy)) return best;
+  const long qx = long(std::clamp(fx, 0.0, double(nx_ - 1))), qy = long(std::clamp(fy, 0.0, double(ny_ - 1)));
   const long far = std::max({qx, nx_ - 1 - qx, qy, ny_ - 1 - qy});  // rings to cover the grid
   for (long k = 0; k <= far; ++k) {
     // every cell of ring k is at least k − 1 cells from the query (half a cell of slack for
