@@ -191,6 +191,10 @@ struct PatchWork {
   bool needsMesh = true;  // full refinement (first time, or the certificate asked for spots)
   bool dirty = false;     // a neighbour added curve samples on this patch's boundary
   bool optimized = false;  // the latest meshing went through optimizePatch
+  // refine without splitting the boundary: a stitch defect (a corner wedge both patches close
+  // with one triangle, a chord both have) came back after required points inside it; the
+  // splits they caused on the wedge's sides only closed it again closer to the corner
+  bool keepBoundary = false;
   double slabHalfWidth = -1;  // largest distance of the patch's input vertices from their mean plane (-1: not yet known)
 
 };
@@ -1427,7 +1431,7 @@ RemeshResult Pipeline::run(const MeshBuffers& input) {
         if (work_[p]->needsMesh || (work_[p]->dirty && round < kConformingRounds)) todo.push_back(p);
       if (todo.empty()) break;
       for (size_t i = 0; i < todo.size(); ++i) {
-        meshPatch(todo[i]);
+        meshPatch(todo[i], !work_[todo[i]]->keepBoundary);
         checkCancel(Stage::Refine, double(i + 1) / double(todo.size()));
       }
     }
@@ -1538,6 +1542,7 @@ RemeshResult Pipeline::run(const MeshBuffers& input) {
       for (int k = 0; k < 2; ++k)
         w.requiredPoints.push_back(0.5 * q[corner][k] + 0.25 * (q[(corner + 1) % 3][k] + q[(corner + 2) % 3][k]));
       w.needsMesh = true;
+      if (cert > 0) w.keepBoundary = true;
     }
     // A shared chord is split inside its patch: a vertex at its planar midpoint.
     for (const auto& [t, c] : chords) {
@@ -1547,6 +1552,7 @@ RemeshResult Pipeline::run(const MeshBuffers& input) {
       const double* b = &w.planarPoints[2 * lt[(c + 1) % 3]];
       w.requiredPoints.insert(w.requiredPoints.end(), {0.5 * (a[0] + b[0]), 0.5 * (a[1] + b[1])});
       w.needsMesh = true;
+      if (cert > 0) w.keepBoundary = true;
     }
     for (size_t t = 0; t < out.triangleCount(); ++t) {
       if (!minAngleBelow(out, t, opt_.minAngleDeg, cosBound) || exemptCornerOf(out, t, exemptVertex) != kNone) continue;

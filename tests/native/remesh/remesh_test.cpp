@@ -118,6 +118,17 @@ TEST_CASE("remesh: shared/data models with the defaults (all but camelhead)") {
   }
 }
 
+// camel at a 30 degree feature angle has a spike where two patches each closed the same corner
+// wedge with one triangle (the stitched surface not manifold there), again after every required
+// point inside it until the patch kept its boundary as it was.
+TEST_CASE("remesh: a corner wedge two patches close alike is opened (camel, feature angle 30)") {
+  ReadResult rr = readMesh(test::readFile(std::string(CONFORMESH_DATA_DIR) + "/camel.off"));
+  RemeshOptions o;
+  o.featureAngleDeg = 30;
+  o.hausdorffSamples = 2000;
+  checkRemesh(rr.mesh, o, "camel.off at 30 degrees", false, false);
+}
+
 TEST_CASE("remesh: returnPatches gives each patch's planar mesh, consistent with the output") {
   RemeshOptions o;
   o.targetEdgeLengthRel = 0.05;
