@@ -337,11 +337,12 @@ export interface RemeshOptions {
   forceTopologyDefect?: boolean;
 }
 
-/** An input corner whose angle is below the bound: the output triangles touching it are exempt. */
+/** An input corner whose angle is below the bound: the output triangles touching it, or with an edge across its small wedge, are exempt. */
 export interface ExemptCorner {
   vertex: number;
   outputVertex: number;
   angle: number;
+  /** The exempt triangles: touching the corner, or across its wedge (both ends on the two curves meeting there). */
   triangles: Uint32Array;
 }
 

@@ -109,7 +109,7 @@ struct ExemptCorner {
   uint32_t inputVertex = 0;
   uint32_t outputVertex = 0;
   double angleDeg = 0.0;
-  std::vector<uint32_t> triangles;  //!< output triangles touching the corner
+  std::vector<uint32_t> triangles;  //!< output triangles exempt for it: touching it or across its wedge (above)
 };
 
 struct StageSeconds {
@@ -125,7 +125,7 @@ struct RemeshReport {
   double pctMinAtLeast40 = 0, pctMinAtLeast50 = 0;  //!< % of triangles whose min angle is >= 40°, >= 50°
   size_t optimizeMoves = 0, optimizeFlips = 0;       //!< accepted by the optimization (moves include curve-sample slides)
   size_t repairMoves = 0;  //!< free vertices moved over the surface where the certificate left a triangle below the bound (remesh/repair.h)
-  double minAngleOutsideExempt = 0;  //!< smallest angle over triangles not touching an exempt corner
+  double minAngleOutsideExempt = 0;  //!< smallest angle over triangles no exempt corner lists
   size_t trianglesBelowBoundOutsideExempt = 0;
   std::vector<ExemptCorner> exemptCorners;
   double meanEdgeLength = 0;
