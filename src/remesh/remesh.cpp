@@ -70,6 +70,9 @@ constexpr double kSameSampleFactor = 1e-9;
 constexpr double kMinFeatureFactor = 2.0;
 // Times a patch's boundary chords may be split where they cross before refinement gives up.
 constexpr int kCrossingRepairs = 8;
+// Certificate rounds past the cap for a stitch defect still there, with its patches keeping their
+// boundary (one opens it on the models; the second is for a defect that moves to a neighbour).
+constexpr int kKeepBoundaryRounds = 2;
 // The last repair may move a star this fraction of the chord tolerance from the input (besides
 // as far as it was; remesh/repair.h): 2.5e-4 of the diagonal by default, below the output's
 // distance to the input elsewhere (~1e-3; docs/decisions/0013).
@@ -192,8 +195,9 @@ struct PatchWork {
   bool dirty = false;     // a neighbour added curve samples on this patch's boundary
   bool optimized = false;  // the latest meshing went through optimizePatch
   // refine without splitting the boundary: a stitch defect (a corner wedge both patches close
-  // with one triangle, a chord both have) came back after required points inside it; the
-  // splits they caused on the wedge's sides only closed it again closer to the corner
+  // with one triangle, a chord both have) is still there at the certificate's cap. The splits a
+  // required point inside it causes on the wedge's sides usually open it with good angles within
+  // a few rounds, but they can also close it again closer to the corner every time
   bool keepBoundary = false;
   double slabHalfWidth = -1;  // largest distance of the patch's input vertices from their mean plane (-1: not yet known)
 
@@ -1519,7 +1523,10 @@ RemeshResult Pipeline::run(const MeshBuffers& input) {
       // output is an error, worse than any angle.
       break;
     }
-    if ((bad == 0 && defects == 0) || cert >= opt_.maxCertificateRounds) break;
+    // a stitch defect left at the cap gets kKeepBoundaryRounds more, its patches keeping their
+    // boundary (PatchWork::keepBoundary): a non-manifold output is an error
+    const int rounds = opt_.maxCertificateRounds + (bestDoubled > 0 ? kKeepBoundaryRounds : 0);
+    if ((bad == 0 && defects == 0) || cert >= rounds) break;
     // 3D angle certificate: where a lifted triangle is below the bound, ask for smaller planar
     // triangles there (a graded spot at its planar centroid) and re-mesh the patch.
     std::vector<size_t> firstTri(work_.size(), 0);
@@ -1542,7 +1549,7 @@ RemeshResult Pipeline::run(const MeshBuffers& input) {
       for (int k = 0; k < 2; ++k)
         w.requiredPoints.push_back(0.5 * q[corner][k] + 0.25 * (q[(corner + 1) % 3][k] + q[(corner + 2) % 3][k]));
       w.needsMesh = true;
-      if (cert > 0) w.keepBoundary = true;
+      if (cert >= opt_.maxCertificateRounds) w.keepBoundary = true;
     }
     // A shared chord is split inside its patch: a vertex at its planar midpoint.
     for (const auto& [t, c] : chords) {
@@ -1552,7 +1559,7 @@ RemeshResult Pipeline::run(const MeshBuffers& input) {
       const double* b = &w.planarPoints[2 * lt[(c + 1) % 3]];
       w.requiredPoints.insert(w.requiredPoints.end(), {0.5 * (a[0] + b[0]), 0.5 * (a[1] + b[1])});
       w.needsMesh = true;
-      if (cert > 0) w.keepBoundary = true;
+      if (cert >= opt_.maxCertificateRounds) w.keepBoundary = true;
     }
     for (size_t t = 0; t < out.triangleCount(); ++t) {
       if (!minAngleBelow(out, t, opt_.minAngleDeg, cosBound) || exemptCornerOf(out, t, exemptVertex) != kNone) continue;

@@ -66,7 +66,8 @@ struct RemeshOptions {
   double maxScaleRatio = 50.0;
   //! Cap on the rounds of the 3D angle certificate (re-meshing patches with smaller planar size
   //! where a lifted triangle is below the bound). The rounds also stop after two in a row that
-  //! do not beat the best one; the best round is the output.
+  //! do not beat the best one; the best round is the output. A stitch defect (non-manifold)
+  //! left at the cap gets two more rounds in which its patches keep their boundary.
   int maxCertificateRounds = 6;
   //! Optimize every patch's mesh after refinement (issue 9): ODT vertex moves and flips in the
   //! conformal plane, accepted only when the lifted 3D triangles get better and the angle bound
