@@ -71,7 +71,7 @@ constexpr double kMinFeatureFactor = 2.0;
 // Times a patch's boundary chords may be split where they cross before refinement gives up.
 constexpr int kCrossingRepairs = 8;
 // Certificate rounds past the cap for a stitch defect still there, with its patches keeping their
-// boundary (one opens it on the models; the second is for a defect that moves to a neighbour).
+// boundary (one opened it in every case measured; the second is a margin).
 constexpr int kKeepBoundaryRounds = 2;
 // The last repair may move a star this fraction of the chord tolerance from the input (besides
 // as far as it was; remesh/repair.h): 2.5e-4 of the diagonal by default, below the output's
