@@ -11,6 +11,7 @@
 #include "features/curve_mesh.h"
 #include "features/edge_graph.h"
 #include "features/segmentation.h"
+#include "features/cut_junctions.h"
 #include "features/sizing.h"
 #include "features/test_shapes.h"
 #include "mesh/mesh_io.h"
