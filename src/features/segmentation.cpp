@@ -1,5 +1,6 @@
 #include "features/segmentation.h"
 #include "features/creases.h"
+#include "features/close_junctions.h"
 #include "features/cut_junctions.h"
 #include "features/wedges.h"
 #include "core/detmath.h"
@@ -14,6 +15,9 @@ namespace conformesh::features {
 namespace {
 
 constexpr double kPi = 3.14159265358979323846;
+// Corners joined by a curve shorter than this many junction scales (about the output edge
+// length) are merged where one is a junction of cuts (features/close_junctions.h).
+constexpr double kCloseJunctionFactor = 0.25;
 
 // Geodesic Voronoi partition of the face set `region` (Dijkstra on the dual graph, centroid
 // distances, never crossing a curve edge) with k farthest-point seeds. `local` maps input face ->
@@ -474,6 +478,7 @@ Segmentation segment(const EdgeGraph& g, const FeatureOptions& options, const Pr
   }
   rebuildCurves(g, seg);
   improveCutJunctions(g, seg, seg.junctionScale);
+  mergeCloseJunctions(g, seg, kCloseJunctionFactor * seg.junctionScale);
   straightenCutEars(g, seg);
   if (progress && !progress(Stage::Segment, 1.0)) fail(Code::Cancelled, Stage::Segment, "cancelled");
   return seg;
@@ -493,6 +498,7 @@ bool splitPatch(const EdgeGraph& g, Segmentation& seg, uint32_t p, uint32_t part
   }
   rebuildCurves(g, seg);
   improveCutJunctions(g, seg, seg.junctionScale, region);
+  mergeCloseJunctions(g, seg, kCloseJunctionFactor * seg.junctionScale, region);
   straightenCutEars(g, seg);
   return true;
 }
