@@ -206,6 +206,47 @@ bool liftPoint(const PatchWork& w, double x, double y, PullbackPoint& q, int hin
   return std::isfinite(best) && pb.locate(bx, by, q, 1e-6);
 }
 
+// RefineOptions::apexOf and chainOf for a patch's PSLG (its boundary points first, then
+// `points` in all): a boundary point on a curve that ends at an input corner below the bound
+// (Meshing::smallCorner) has that corner's boundary point as its apex and the curve as its chain.
+// The triangles across such a wedge are then left as it forces them, as the 3D certificate
+// leaves them (certificate.h): refining them only splits the sides closer to the corner, and the
+// patches across take up each split, round after round.
+void cornerChains(const Surface& surf, const Meshing& m, const PatchWork& w, const std::vector<BoundaryPoint>& bp,
+                  size_t points, std::vector<uint32_t>& apexOf, std::vector<uint32_t>& chainOf) {
+  apexOf.clear();
+  chainOf.clear();
+  const F::CurveMesh& cm = m.samples.cm;
+  const auto corner = [&](uint32_t sample) {
+    const uint32_t v = cm.samples[sample].vertex;
+    return v != kNone && v < m.smallCorner.size() && m.smallCorner[v];
+  };
+  std::vector<uint32_t> apexSamples;  // the small corners on this patch's boundary, and their boundary points
+  std::vector<uint32_t> apexPoint;
+  for (uint32_t i = 0; i < bp.size(); ++i)
+    if (corner(bp[i].sample) && std::find(apexSamples.begin(), apexSamples.end(), bp[i].sample) == apexSamples.end())
+      apexSamples.push_back(bp[i].sample), apexPoint.push_back(i);
+  if (apexSamples.empty()) return;
+  apexOf.assign(points, planar::kNoApex);
+  chainOf.assign(points, planar::kNoApex);
+  const auto& loop = w.pm.boundaryLoops[0];
+  for (uint32_t i = 0; i < bp.size(); ++i) {
+    const F::CurveSample& smp = cm.samples[bp[i].sample];
+    if (smp.vertex != kNone && surf.seg.vertexCorner[smp.vertex]) continue;  // a corner ends every chain
+    const auto& h = loop[bp[i].loopPos];
+    const uint32_t c = surf.seg.edgeCurve[surf.g.faceEdges[w.pm.faceInput[h.face]][h.corner]];
+    if (c == kNone) continue;
+    const auto& ids = cm.curveSamples[c];
+    for (uint32_t end : {ids.front(), ids.back()}) {
+      const auto it = std::find(apexSamples.begin(), apexSamples.end(), end);
+      if (it == apexSamples.end()) continue;
+      apexOf[i] = apexPoint[size_t(it - apexSamples.begin())];
+      chainOf[i] = c;
+      break;
+    }
+  }
+}
+
 }  // namespace
 
 void meshPatch(const Surface& surf, const RemeshOptions& opt, Meshing& m, uint32_t p, bool splitSegments) {
@@ -286,6 +327,7 @@ void meshPatch(const Surface& surf, const RemeshOptions& opt, Meshing& m, uint32
   ro.maxInsertions = size_t(std::min(4e7, 50.0 * area3 / (surf.sizing.minLength * surf.sizing.minLength) + 1e5));
   planar::RefineResult rr;
   for (int attempt = 0;; ++attempt) {
+    cornerChains(surf, m, w, bp, pslg.points.size() / 2, ro.apexOf, ro.chainOf);
     try {
       rr = planar::refinePslg(pslg, ro);
       break;

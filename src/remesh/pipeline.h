@@ -98,6 +98,9 @@ struct CurveSamples {
 struct Meshing {
   Patches patches;
   CurveSamples samples;
+  //! per vertex of the edge graph: an input corner below the angle bound (an exempt corner; its
+  //! sides' triangles are left as the wedge forces them, in the plane as in 3D)
+  std::vector<uint8_t> smallCorner;
   double liftSeconds = 0, optimizeSeconds = 0;
 };
 

@@ -83,6 +83,12 @@ RemeshResult run(const MeshBuffers& input, const RemeshOptions& opt, const Progr
   progress.check(Stage::CurveMesh, 0);
   m.samples.cm = F::sampleCurves(surf.g, surf.seg, surf.sizing);
   indexSamples(surf, m.samples);
+  {  // the input's corners below the bound (as certificate.h's ExemptCorners finds them)
+    const std::vector<double> wedge = F::featureWedgeAngles(surf.g, surf.seg);
+    m.smallCorner.assign(surf.g.vertexCount, 0);
+    for (uint32_t v = 0; v < surf.g.vertexCount && v < surf.input().vertexCount(); ++v)
+      m.smallCorner[v] = wedge[v] * 180.0 / 3.14159265358979323846 < opt.minAngleDeg;
+  }
   rep.seconds.curveMesh = elapsed(clock);
 
   // refine + lift + optimize, re-meshing neighbours of split segments, then the 3D angle certificate
