@@ -352,6 +352,12 @@ TEST_CASE("Hausdorff: vertices on the reference measure 0; the samples between t
   CHECK(v.aToB < 1e-15);
   CHECK(v.bToA > 1e-4);  // coarse vertices between the fine grid's lines are off its surface
   CHECK(v.bToA == bruteForceOneSided(coarse, onInput, 0, opt.seed + 1));
+  // nothing to measure against: 0, as before (no triangle, or only ones with indices out of range)
+  MeshBuffers none = coarse;
+  none.triangles = {0, 1, 9999};
+  CHECK(hausdorffDistance(coarse, none, HausdorffOptions{}).aToB == 0);
+  none.triangles.clear();
+  CHECK(hausdorffDistance(coarse, none, HausdorffOptions{}).aToB == 0);
   // surfaceSamples: the vertices first, then the area samples, deterministic
   const std::vector<Vec3> s1 = surfaceSamples(coarse, 500, 3), s2 = surfaceSamples(coarse, 500, 3);
   CHECK(s1.size() >= 64 + 500 - 98);  // 64 vertices; each of 98 triangles rounds its count up or down
