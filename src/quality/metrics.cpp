@@ -179,14 +179,15 @@ double oneSidedMax(const std::vector<Vec3>& pts, const TriangleMeshDistance& tar
   int64_t hint = -1;
   for (size_t i = 0; i < order.size(); i += kStride) {
     const ClosestHit hit = target.closest(pts[order[i].second], hint);
-    if (hit.primitive < 0) return 0;  // target empty: nothing to measure against
+    if (hit.primitive < 0) continue;  // no valid triangle in the target: 0, as oneSidedWithMean
     hint = hit.primitive;
     worst = std::max(worst, hit.distanceSquared);
   }
   for (size_t i = 0; i < order.size(); ++i) {
     if (i % kStride == 0) continue;
     const ClosestHit hit = target.closest(pts[order[i].second], hint, worst);
-    if (hit.primitive >= 0) hint = hit.primitive;
+    if (hit.primitive < 0) continue;
+    hint = hit.primitive;
     worst = std::max(worst, hit.distanceSquared);
   }
   return std::sqrt(worst);
