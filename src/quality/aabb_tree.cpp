@@ -94,7 +94,7 @@ uint32_t AabbTree::addChildren(uint32_t node) {
 
 template <class SplitFn>
 void AabbTree::buildTopDown(uint32_t n, SplitFn split) {
-  nodes_.reserve(2 * size_t(n) / kLeafSize + 2);
+  nodes_.reserve(2 * size_t(n));  // at most n leaves, 2n - 1 nodes: never reallocated (pages are touched as used)
   struct Task {
     uint32_t node, begin, end;
   };
