@@ -167,7 +167,8 @@ void oneSidedWithMean(const std::vector<Vec3>& pts, const TriangleMeshDistance& 
 //! over every kStride-th of them (spread over the whole surface) sets a running max near the
 //! final one, so that most of the others break at once (Taha and Hanbury shuffle the points for
 //! this).
-double oneSidedMax(const std::vector<Vec3>& pts, const TriangleMeshDistance& target) {
+double oneSidedMax(const std::vector<Vec3>& pts, const TriangleMeshDistance& target,
+                   const std::vector<int64_t>& pointHints = {}) {
   constexpr size_t kStride = 16;
   Box3 box;
   for (const Vec3& p : pts) box.add(p);
@@ -177,15 +178,17 @@ double oneSidedMax(const std::vector<Vec3>& pts, const TriangleMeshDistance& tar
   std::sort(order.begin(), order.end());
   double worst = 0;  // squared
   int64_t hint = -1;
+  // a point's own hint (a triangle near a vertex, given by the caller) before its predecessor's
+  auto hintOf = [&](uint32_t i) { return i < pointHints.size() && pointHints[i] >= 0 ? pointHints[i] : hint; };
   for (size_t i = 0; i < order.size(); i += kStride) {
-    const ClosestHit hit = target.closest(pts[order[i].second], hint);
+    const ClosestHit hit = target.closest(pts[order[i].second], hintOf(order[i].second));
     if (hit.primitive < 0) continue;  // no valid triangle in the target: 0, as oneSidedWithMean
     hint = hit.primitive;
     worst = std::max(worst, hit.distanceSquared);
   }
   for (size_t i = 0; i < order.size(); ++i) {
     if (i % kStride == 0) continue;
-    const ClosestHit hit = target.closest(pts[order[i].second], hint, worst);
+    const ClosestHit hit = target.closest(pts[order[i].second], hintOf(order[i].second), worst);
     if (hit.primitive < 0) continue;
     hint = hit.primitive;
     worst = std::max(worst, hit.distanceSquared);
@@ -475,7 +478,18 @@ HausdorffResult hausdorffDistance(const MeshBuffers& a, const MeshBuffers& b, co
     oneSidedWithMean(sa, TriangleMeshDistance(b), r.aToB, r.meanAToB);
     oneSidedWithMean(sb, TriangleMeshDistance(a), r.bToA, r.meanBToA);
   } else {
-    r.aToB = oneSidedMax(sa, TriangleMeshDistance(b, AabbSplit::Morton));
+    // the hints of A's vertex samples (the first samples, in vertex order)
+    std::vector<int64_t> hintsA;
+    const std::vector<uint32_t>* near = options.nearTriangleOfVertexA;
+    if (near && near->size() == a.vertexCount()) {
+      std::vector<char> used(a.vertexCount(), 0);
+      for (size_t f = 0; f < a.triangleCount(); ++f)
+        if (triangleValid(a, f))
+          for (int k = 0; k < 3; ++k) used[a.triangles[3 * f + k]] = 1;
+      for (size_t v = 0; v < a.vertexCount(); ++v)
+        if (used[v]) hintsA.push_back((*near)[v] < b.triangleCount() ? int64_t((*near)[v]) : -1);
+    }
+    r.aToB = oneSidedMax(sa, TriangleMeshDistance(b, AabbSplit::Morton), hintsA);
     r.bToA = oneSidedMax(sb, TriangleMeshDistance(a, AabbSplit::Morton));
     r.meanAToB = r.meanBToA = -1;
   }

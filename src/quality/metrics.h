@@ -113,6 +113,10 @@ struct HausdorffOptions {
   //! Also the mean distances (every sample searched for its closest triangle). Off: the means
   //! are −1 and the maxima the same, found faster (most samples need no full search).
   bool computeMean = false;
+  //! Optional, for speed only (the result is the same without it): for each vertex of A, a
+  //! triangle of B likely near it, e.g. the remesher's input face of each output vertex (an
+  //! index ≥ B's triangle count: none). Ignored unless it has one entry per vertex of A.
+  const std::vector<uint32_t>* nearTriangleOfVertexA = nullptr;
 };
 
 //! The points a Hausdorff distance is measured from on mesh m: every referenced vertex (in index

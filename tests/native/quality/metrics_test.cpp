@@ -328,6 +328,14 @@ TEST_CASE("Hausdorff: each side is the brute-force max over its samples, with an
     const double aToB = bruteForceOneSided(*pr.a, *pr.b, opt.samplesPerSide, opt.seed);
     const double bToA = bruteForceOneSided(*pr.b, *pr.a, opt.samplesPerSide, opt.seed + 1);
     const HausdorffResult fast = hausdorffDistance(*pr.a, *pr.b, opt);
+    // hints for A's vertices change the speed only, even arbitrary ones (some out of range: none)
+    std::vector<uint32_t> hints(pr.a->vertexCount());
+    for (size_t v = 0; v < hints.size(); ++v) hints[v] = uint32_t((v * 7) % (pr.b->triangleCount() + 3));
+    opt.nearTriangleOfVertexA = &hints;
+    const HausdorffResult hinted = hausdorffDistance(*pr.a, *pr.b, opt);
+    opt.nearTriangleOfVertexA = nullptr;
+    CHECK(hinted.aToB == aToB);
+    CHECK(hinted.bToA == bToA);
     opt.computeMean = true;
     const HausdorffResult full = hausdorffDistance(*pr.a, *pr.b, opt);
     CHECK(aToB > 0);
