@@ -1,5 +1,7 @@
 #include "quality/aabb_tree.h"
 
+#include "core/bucket_sort.h"
+
 #include <algorithm>
 #include <cmath>
 
@@ -28,6 +30,13 @@ uint64_t MortonGrid::code(const Vec3& p) const {
     c |= spread(cell) << k;
   }
   return c;
+}
+
+void MortonGrid::sort(std::vector<std::pair<uint64_t, uint32_t>>& keyed) {
+  int bits = 1;  // about one bucket per pair
+  while (bits < 24 && (size_t(1) << bits) < keyed.size()) ++bits;
+  bucketSort(keyed, size_t(1) << bits, [bits](const std::pair<uint64_t, uint32_t>& e) { return e.first >> (63 - bits); },
+             [](const std::pair<uint64_t, uint32_t>& x, const std::pair<uint64_t, uint32_t>& y) { return x < y; });
 }
 
 double Box3::diagonal() const {
@@ -147,12 +156,15 @@ void AabbTree::buildMedian(uint32_t n, const std::function<Box3(uint32_t)>& boxO
 }
 
 void AabbTree::buildMorton(uint32_t n, const std::function<Box3(uint32_t)>& boxOf) {
-  Box3 cbox;
-  for (uint32_t i = 0; i < n; ++i) cbox.add(centroidOf(boxOf(i)));
-  const MortonGrid grid(cbox);
   std::vector<std::pair<uint64_t, uint32_t>> keyed(n);
-  for (uint32_t i = 0; i < n; ++i) keyed[i] = {grid.code(centroidOf(boxOf(i))), i};
-  std::sort(keyed.begin(), keyed.end());
+  {
+    std::vector<Vec3> centroid(n);
+    Box3 cbox;
+    for (uint32_t i = 0; i < n; ++i) cbox.add(centroid[i] = centroidOf(boxOf(i)));
+    const MortonGrid grid(cbox);
+    for (uint32_t i = 0; i < n; ++i) keyed[i] = {grid.code(centroid[i]), i};
+  }
+  MortonGrid::sort(keyed);
   for (uint32_t i = 0; i < n; ++i) order_[i] = keyed[i].second;
   buildTopDown(n, [&](uint32_t begin, uint32_t end) {
     if (end - begin <= kLeafSize) return end;

@@ -11,6 +11,7 @@
 #include <cstdint>
 #include <functional>
 #include <limits>
+#include <utility>
 #include <vector>
 
 namespace conformesh::quality {
@@ -53,6 +54,9 @@ class MortonGrid {
  public:
   explicit MortonGrid(const Box3& box);
   uint64_t code(const Vec3& p) const;
+  //! Sort (code, index) pairs as std::sort does, in linear time for spread codes (a counting
+  //! sort on the codes' leading bits, then each bucket; core/bucket_sort.h).
+  static void sort(std::vector<std::pair<uint64_t, uint32_t>>& keyed);
 
  private:
   static constexpr double kCells = 2097151.0;  // 2^21 - 1

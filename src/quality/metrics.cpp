@@ -175,7 +175,7 @@ double oneSidedMax(const std::vector<Vec3>& pts, const TriangleMeshDistance& tar
   const MortonGrid grid(box);
   std::vector<std::pair<uint64_t, uint32_t>> order(pts.size());
   for (size_t i = 0; i < pts.size(); ++i) order[i] = {grid.code(pts[i]), uint32_t(i)};
-  std::sort(order.begin(), order.end());
+  MortonGrid::sort(order);
   double worst = 0;  // squared
   int64_t hint = -1;
   // a point's own hint (a triangle near a vertex, given by the caller) before its predecessor's
