@@ -67,6 +67,7 @@ int main(int argc, char** argv) {
       quality::HausdorffOptions ho;
       ho.samplesPerSide = size_t(a.number("--samples", 200000));
       ho.seed = uint64_t(a.number("--seed", 1));
+      ho.computeMean = true;  // meanDistanceRel below
       quality::HausdorffResult h = quality::hausdorffDistance(out, ref, ho);
       quality::FeatureOptions fo;
       fo.featureAngle = a.number("--feature-angle", 60);

@@ -1,6 +1,6 @@
 // Benchmark sections, called by bench/run.sh (which installs and builds the peers first).
 //
-//   node bench/run.mjs [--sections io,2d,flatten,remesh,wasm,scaling] [--quick] [--repeat N]
+//   node bench/run.mjs [--sections io,2d,flatten,remesh,wasm,page,scaling] [--quick] [--repeat N]
 //                      [--models a.off,b.obj]   (remesh: a subset of ../shared/data)
 //                      [--native-dirs A:B] [--wasm-dirs A:B]   (where our tools are looked up)
 //
@@ -38,7 +38,7 @@ const opt = (name, fallback) => {
 };
 const QUICK = argv.includes('--quick');
 const REPEAT = Number(opt('--repeat', QUICK ? 1 : 3));
-const ALL_SECTIONS = ['io', '2d', 'flatten', 'remesh', 'wasm', 'scaling'];
+const ALL_SECTIONS = ['io', '2d', 'flatten', 'remesh', 'wasm', 'page', 'scaling'];
 const SECTIONS = opt('--sections', ALL_SECTIONS.join(',')).split(',').filter(Boolean);
 for (const s of SECTIONS) if (!ALL_SECTIONS.includes(s)) { console.error(`unknown section ${s}`); process.exit(2); }
 mkdirSync(WORK, { recursive: true });
@@ -495,7 +495,13 @@ function sectionWasm() {
       rows.push([name, NOT_YET, NOT_YET, null]);
     } else {
       const measure = (cmd, a) => {
-        if (name !== 'bench_read_stl') return record(repeatRun(cmd, a, REPEAT, { timeout: 600 }), ['seconds']);
+        if (name !== 'bench_read_stl') {
+          const rr = repeatRun(cmd, a, REPEAT, { timeout: 600 });
+          const rec = record(rr, ['seconds']);
+          // bench_flatten: each process's first call (run 0) apart, the median over the processes
+          if (name === 'bench_flatten' && rr.ok) rec.firstCallSeconds = median(rr.runs.map((r) => lastJson(r.stdout, (j) => j.run === 0)?.seconds));
+          return rec;
+        }
         const r = run(cmd, a, { timeout: 600 });
         const p = r.ok ? parseReadStl(r) : null;
         return p ? { available: true, ok: true, ...p } : { available: true, ok: false, error: r.error || 'unparsed output' };
@@ -504,6 +510,10 @@ function sectionWasm() {
       row.wasm = measure(process.execPath, ['--no-experimental-fetch', wasmJs, ...args]);
       row.ratioWasmToNative = ratio(row.wasm.seconds ?? row.wasm.medianWallSeconds, row.native.seconds ?? row.native.medianWallSeconds);
       rows.push([name, row.native.seconds ?? row.native.medianWallSeconds ?? 'failed', row.wasm.seconds ?? row.wasm.medianWallSeconds ?? 'failed', row.ratioWasmToNative]);
+      if (Number.isFinite(row.native.firstCallSeconds) && Number.isFinite(row.wasm.firstCallSeconds)) {
+        row.ratioFirstCallToNative = ratio(row.wasm.firstCallSeconds, row.native.firstCallSeconds);
+        rows.push([`${name} (first call of a process)`, row.native.firstCallSeconds, row.wasm.firstCallSeconds, row.ratioFirstCallToNative]);
+      }
     }
     sec.rows.push(row);
   }
@@ -561,6 +571,54 @@ function sectionWasm() {
     sec.rows.push(row);
   }
   table(`wasm vs native: median of ${REPEAT} (remesh: of ${Math.max(3, REPEAT)} rounds, each ratio the median of the rounds' ratios)`, ['program', 'native s', 'wasm s', 'wasm/native'], rows);
+  return sec;
+}
+
+// ---- section: page ------------------------------------------------------------------------------
+// The demo page in headless Chromium (bench/tools/page_visits.mjs): a first visit on an empty
+// browser profile, then a second visit on the same profile (the page and its .wasm from the HTTP
+// cache, V8's compiled code from Chromium's code cache), each remeshing fandisk at 0.004 twice in
+// the page's worker. Against the native CLI on the same model and options in the same run, with
+// the Hausdorff distance (the page computes it): native runs before and after the page rounds.
+function sectionPage() {
+  const sec = { description: 'The demo page in headless Chromium: first visit (empty profile) and second visit (same profile: HTTP and V8 code cache warm), fandisk at 0.004, remeshed twice per visit in the page\'s worker, vs the native CLI (same options, Hausdorff included).', rows: [] };
+  const fandisk = path.join(DATA, 'fandisk.off');
+  const native = cliFor('remesh');
+  const tool = path.join(ROOT, 'bench/tools/page_visits.mjs');
+  const missing = !native ? 'conformesh remesh' : !existsSync(path.join(ROOT, 'dist/browser.js')) ? 'dist/ (npm run build)' : !existsSync('/usr/bin/chromium') ? '/usr/bin/chromium' : null;
+  if (missing) {
+    sec.status = `${NOT_YET}: ${missing}`;
+    table('page: first and second visit', ['step', 'page s', 'library s', 'native s', 'library/native'], [[NOT_YET, null, null, null, null]]);
+    return sec;
+  }
+  const rounds = Math.max(2, REPEAT);
+  const nativeArgs = ['remesh', fandisk, '--edge-length-rel', '0.004', '--json'];
+  const nativeRuns = [];
+  const nativeBatch = () => { const rr = repeatRun(native, nativeArgs, Math.max(2, Math.ceil(REPEAT / 2)), { timeout: 600 }); nativeRuns.push(...rr.runs); return rr.ok; };
+  const okBefore = nativeBatch();
+  const pv = run(process.execPath, [tool, fandisk, '0.004', String(rounds)], { timeout: 600 * rounds });
+  const okAfter = nativeBatch();
+  const nativeSeconds = okBefore && okAfter ? median(nativeRuns.map((r) => Number(r.json?.seconds?.total))) : null;
+  sec.native = { ok: okBefore && okAfter, seconds: nativeSeconds, runs: nativeRuns.length, cmd: [native, ...nativeArgs].join(' ') };
+  const summary = pv.ok ? lastJson(pv.stdout, (j) => Array.isArray(j.visits)) : null;
+  sec.visits = pv.stdout.split('\n').filter((l) => l.startsWith('{"round"')).map((l) => JSON.parse(l));
+  sec.summary = summary;
+  if (!summary) {
+    sec.status = 'failed';
+    sec.error = pv.error || 'no summary line';
+    table('page: first and second visit', ['step', 'page s', 'library s', 'native s', 'library/native'], [[`failed: ${sec.error}`, null, null, null, null]]);
+    return sec;
+  }
+  const rows = [];
+  for (const v of summary.visits) {
+    const name = v.visit === 1 ? 'first visit (empty profile)' : 'second visit (same profile)';
+    rows.push([`${name}: navigation until the worker's module answers`, v.moduleReadyMs / 1000, null, null, null]);
+    rows.push([`${name}: first remesh`, v.first.pageSeconds, v.first.librarySeconds, nativeSeconds, ratio(v.first.librarySeconds, nativeSeconds)]);
+    rows.push([`${name}: second remesh`, v.second.pageSeconds, v.second.librarySeconds, nativeSeconds, ratio(v.second.librarySeconds, nativeSeconds)]);
+    sec.rows.push({ visit: v.visit, ...v, ratioFirstToNative: ratio(v.first.librarySeconds, nativeSeconds), ratioSecondToNative: ratio(v.second.librarySeconds, nativeSeconds) });
+  }
+  rows.push([`Chromium's code cache for the .wasm after the first visit (bytes)`, summary.codeCacheBytes, null, null, null]);
+  table(`page: fandisk at 0.004 in headless Chromium, medians of ${rounds} profiles (page s: click to result; library s: the report's total; native: median of ${nativeRuns.length} CLI runs around them)`, ['step', 'page s', 'library s', 'native s', 'library/native'], rows);
   return sec;
 }
 
@@ -634,7 +692,7 @@ function sectionScaling() {
 }
 
 // ---- main -----------------------------------------------------------------------------------
-const SECTION_FNS = { io: sectionIo, '2d': section2d, flatten: sectionFlatten, remesh: sectionRemesh, wasm: sectionWasm, scaling: sectionScaling };
+const SECTION_FNS = { io: sectionIo, '2d': section2d, flatten: sectionFlatten, remesh: sectionRemesh, wasm: sectionWasm, page: sectionPage, scaling: sectionScaling };
 for (const name of SECTIONS) {
   const t0 = Date.now();
   log(`\n== section ${name}`);

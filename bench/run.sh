@@ -1,7 +1,7 @@
 #!/usr/bin/env bash
 # npm run bench — benchmarks with peers, measured side by side in the same run.
 #
-#   bash bench/run.sh [--sections io,2d,flatten,remesh,wasm,scaling] [--quick] [--repeat N]
+#   bash bench/run.sh [--sections io,2d,flatten,remesh,wasm,page,scaling] [--quick] [--repeat N]
 #
 # 1. installs the peers' Debian packages when missing (CGAL: libcgal-dev; gmsh),
 # 2. builds the peer drivers (bench/peers/*.cpp: our code calling the peer libraries) and the

@@ -139,46 +139,9 @@ struct Rng {
   double uniform() { return double(next() >> 11) * (1.0 / 9007199254740992.0); }
 };
 
-//! Sample points on a mesh: every referenced vertex, then `count` area-weighted random points
-//! (stratified by triangle: floor of the expected count plus a random rounding).
-std::vector<Vec3> samplePoints(const MeshBuffers& m, size_t count, uint64_t seed) {
-  std::vector<Vec3> pts;
-  std::vector<char> used(m.vertexCount(), 0);
-  std::vector<double> area(m.triangleCount(), 0.0);
-  double total = 0;
-  for (size_t f = 0; f < m.triangleCount(); ++f) {
-    if (!triangleValid(m, f)) continue;
-    const uint32_t* t = &m.triangles[3 * f];
-    for (int k = 0; k < 3; ++k) used[t[k]] = 1;
-    double a = 0.5 * norm(cross(sub(vertex(m, t[1]), vertex(m, t[0])), sub(vertex(m, t[2]), vertex(m, t[0]))));
-    if (std::isfinite(a)) area[f] = a;
-    total += area[f];
-  }
-  for (size_t v = 0; v < m.vertexCount(); ++v)
-    if (used[v]) pts.push_back(vertex(m, uint32_t(v)));
-  if (!(total > 0) || count == 0) return pts;
-  pts.reserve(pts.size() + count + m.triangleCount());
-  Rng rng{seed};
-  for (size_t f = 0; f < m.triangleCount(); ++f) {
-    if (!(area[f] > 0)) continue;
-    double expected = double(count) * area[f] / total;
-    size_t n = size_t(expected);
-    if (rng.uniform() < expected - double(n)) ++n;
-    const uint32_t* t = &m.triangles[3 * f];
-    Vec3 a = vertex(m, t[0]), b = vertex(m, t[1]), c = vertex(m, t[2]);
-    for (size_t s = 0; s < n; ++s) {
-      // Uniform point in a triangle (Osada et al. 2002, "Shape distributions", eq. 1).
-      double r1 = std::sqrt(rng.uniform()), r2 = rng.uniform();
-      double wa = 1 - r1, wb = r1 * (1 - r2), wc = r1 * r2;
-      pts.push_back({wa * a[0] + wb * b[0] + wc * c[0], wa * a[1] + wb * b[1] + wc * c[1],
-                     wa * a[2] + wb * b[2] + wc * c[2]});
-    }
-  }
-  return pts;
-}
-
-//! Max and mean distance from points to a mesh.
-void oneSided(const std::vector<Vec3>& pts, const TriangleMeshDistance& target, double& maxD, double& meanD) {
+//! Max and mean distance from points to a mesh: every point's closest triangle.
+void oneSidedWithMean(const std::vector<Vec3>& pts, const TriangleMeshDistance& target, double& maxD,
+                      double& meanD) {
   maxD = 0;
   double sum = 0;
   int64_t hint = -1;  // consecutive samples are near each other (same or neighbouring triangles)
@@ -191,6 +154,46 @@ void oneSided(const std::vector<Vec3>& pts, const TriangleMeshDistance& target, 
     sum += d;
   }
   meanD = pts.empty() ? 0 : sum / double(pts.size());
+}
+
+//! Max distance from points to a mesh, the same value as oneSidedWithMean's, by early breaking
+//! (Taha & Hanbury 2015, "An efficient algorithm for calculating the exact Hausdorff distance",
+//! IEEE TPAMI 37(11)): a point can raise the running max only if every triangle is farther than
+//! it, so its search stops at the first triangle found within the running max (its predecessor's
+//! triangle first, then that triangle's neighbours in the tree, then the tree from the root).
+//! Each point is either measured exactly (its closest triangle, as without early breaking) or
+//! shown to be within the running max, so the max is the same. The points are visited along a
+//! Morton curve (each near its predecessor, so the hint is often close enough), and a first pass
+//! over every kStride-th of them (spread over the whole surface) sets a running max near the
+//! final one, so that most of the others break at once (Taha and Hanbury shuffle the points for
+//! this).
+double oneSidedMax(const std::vector<Vec3>& pts, const TriangleMeshDistance& target,
+                   const std::vector<int64_t>& pointHints = {}) {
+  constexpr size_t kStride = 16;
+  Box3 box;
+  for (const Vec3& p : pts) box.add(p);
+  const MortonGrid grid(box);
+  std::vector<std::pair<uint64_t, uint32_t>> order(pts.size());
+  for (size_t i = 0; i < pts.size(); ++i) order[i] = {grid.code(pts[i]), uint32_t(i)};
+  MortonGrid::sort(order);
+  double worst = 0;  // squared
+  int64_t hint = -1;
+  // a point's own hint (a triangle near a vertex, given by the caller) before its predecessor's
+  auto hintOf = [&](uint32_t i) { return i < pointHints.size() && pointHints[i] >= 0 ? pointHints[i] : hint; };
+  for (size_t i = 0; i < order.size(); i += kStride) {
+    const ClosestHit hit = target.closest(pts[order[i].second], hintOf(order[i].second));
+    if (hit.primitive < 0) continue;  // no valid triangle in the target: 0, as oneSidedWithMean
+    hint = hit.primitive;
+    worst = std::max(worst, hit.distanceSquared);
+  }
+  for (size_t i = 0; i < order.size(); ++i) {
+    if (i % kStride == 0) continue;
+    const ClosestHit hit = target.closest(pts[order[i].second], hintOf(order[i].second), worst);
+    if (hit.primitive < 0) continue;
+    hint = hit.primitive;
+    worst = std::max(worst, hit.distanceSquared);
+  }
+  return std::sqrt(worst);
 }
 
 }  // namespace
@@ -389,13 +392,16 @@ Box3 boundingBox(const MeshBuffers& mesh) {
   return box;
 }
 
-TriangleMeshDistance::TriangleMeshDistance(const MeshBuffers& mesh) : mesh_(mesh) {
-  std::vector<Box3> boxes(mesh.triangleCount());
-  for (size_t f = 0; f < mesh.triangleCount(); ++f) {
-    if (!triangleValid(mesh, f)) continue;  // empty box: never closer than anything
-    for (int k = 0; k < 3; ++k) boxes[f].add(vertex(mesh, mesh.triangles[3 * f + k]));
-  }
-  tree_.build(boxes);
+TriangleMeshDistance::TriangleMeshDistance(const MeshBuffers& mesh, AabbSplit split) : mesh_(mesh) {
+  tree_.build(
+      mesh.triangleCount(),
+      [&mesh](uint32_t f) {
+        Box3 box;  // an invalid triangle's stays empty: never closer than anything
+        if (triangleValid(mesh, f))
+          for (int k = 0; k < 3; ++k) box.add(vertex(mesh, mesh.triangles[3 * size_t(f) + k]));
+        return box;
+      },
+      split);
 }
 
 double TriangleMeshDistance::faceDistanceSquared(uint32_t f, const Vec3& q) const {
@@ -405,32 +411,87 @@ double TriangleMeshDistance::faceDistanceSquared(uint32_t f, const Vec3& q) cons
   return distanceSquared(q, c);
 }
 
-ClosestHit TriangleMeshDistance::closest(const Vec3& p, int64_t hint) const {
+ClosestHit TriangleMeshDistance::closest(const Vec3& p, int64_t hint, double stopSquared) const {
   auto distSq = [this](uint32_t f, const Vec3& q) { return faceDistanceSquared(f, q); };
-  if (hint < 0 || size_t(hint) >= mesh_.triangleCount()) return tree_.closest(p, distSq);
+  constexpr double kInf = std::numeric_limits<double>::infinity();
+  if (hint < 0 || size_t(hint) >= mesh_.triangleCount()) return tree_.closest(p, distSq, kInf, stopSquared);
   // the hint's distance bounds the search; a triangle strictly closer replaces it, so the
   // distance is the same as without the hint
   const double dh = distSq(uint32_t(hint), p);
-  if (!(dh < std::numeric_limits<double>::infinity())) return tree_.closest(p, distSq);  // NaN or none
-  ClosestHit h = tree_.closest(p, distSq, dh);
+  if (!(dh < kInf)) return tree_.closest(p, distSq, kInf, stopSquared);  // NaN or none
+  if (dh <= stopSquared) return {hint, dh};
+  if (stopSquared >= 0) {
+    // a witness among the hint's neighbours in the tree saves the walk from the root
+    constexpr int kLevels = 3;  // a subtree of up to 32 triangles (4 per leaf)
+    const ClosestHit near = tree_.withinNear(p, distSq, stopSquared, uint32_t(hint), kLevels);
+    if (near.primitive >= 0) return near;
+  }
+  ClosestHit h = tree_.closest(p, distSq, dh, stopSquared);
   if (h.primitive < 0) h = {hint, dh};
   return h;
+}
+
+std::vector<Vec3> surfaceSamples(const MeshBuffers& m, size_t count, uint64_t seed) {
+  std::vector<Vec3> pts;
+  std::vector<char> used(m.vertexCount(), 0);
+  std::vector<double> area(m.triangleCount(), 0.0);
+  double total = 0;
+  for (size_t f = 0; f < m.triangleCount(); ++f) {
+    if (!triangleValid(m, f)) continue;
+    const uint32_t* t = &m.triangles[3 * f];
+    for (int k = 0; k < 3; ++k) used[t[k]] = 1;
+    double a = 0.5 * norm(cross(sub(vertex(m, t[1]), vertex(m, t[0])), sub(vertex(m, t[2]), vertex(m, t[0]))));
+    if (std::isfinite(a)) area[f] = a;
+    total += area[f];
+  }
+  for (size_t v = 0; v < m.vertexCount(); ++v)
+    if (used[v]) pts.push_back(vertex(m, uint32_t(v)));
+  if (!(total > 0) || count == 0) return pts;
+  pts.reserve(pts.size() + count + m.triangleCount());
+  Rng rng{seed};
+  for (size_t f = 0; f < m.triangleCount(); ++f) {
+    if (!(area[f] > 0)) continue;
+    double expected = double(count) * area[f] / total;
+    size_t n = size_t(expected);
+    if (rng.uniform() < expected - double(n)) ++n;
+    const uint32_t* t = &m.triangles[3 * f];
+    Vec3 a = vertex(m, t[0]), b = vertex(m, t[1]), c = vertex(m, t[2]);
+    for (size_t s = 0; s < n; ++s) {
+      // Uniform point in a triangle (Osada et al. 2002, "Shape distributions", eq. 1).
+      double r1 = std::sqrt(rng.uniform()), r2 = rng.uniform();
+      double wa = 1 - r1, wb = r1 * (1 - r2), wc = r1 * r2;
+      pts.push_back({wa * a[0] + wb * b[0] + wc * c[0], wa * a[1] + wb * b[1] + wc * c[1],
+                     wa * a[2] + wb * b[2] + wc * c[2]});
+    }
+  }
+  return pts;
 }
 
 HausdorffResult hausdorffDistance(const MeshBuffers& a, const MeshBuffers& b, const HausdorffOptions& options) {
   HausdorffResult r;
   r.diagonal = boundingBox(b).diagonal();
-  std::vector<Vec3> sa = samplePoints(a, options.samplesPerSide, options.seed);
-  std::vector<Vec3> sb = samplePoints(b, options.samplesPerSide, options.seed + 1);
+  std::vector<Vec3> sa = surfaceSamples(a, options.samplesPerSide, options.seed);
+  std::vector<Vec3> sb = surfaceSamples(b, options.samplesPerSide, options.seed + 1);
   r.samplesA = sa.size();
   r.samplesB = sb.size();
-  {
-    TriangleMeshDistance toB(b);
-    oneSided(sa, toB, r.aToB, r.meanAToB);
-  }
-  {
-    TriangleMeshDistance toA(a);
-    oneSided(sb, toA, r.bToA, r.meanBToA);
+  if (options.computeMean) {
+    oneSidedWithMean(sa, TriangleMeshDistance(b), r.aToB, r.meanAToB);
+    oneSidedWithMean(sb, TriangleMeshDistance(a), r.bToA, r.meanBToA);
+  } else {
+    // the hints of A's vertex samples (the first samples, in vertex order)
+    std::vector<int64_t> hintsA;
+    const std::vector<uint32_t>* near = options.nearTriangleOfVertexA;
+    if (near && near->size() == a.vertexCount()) {
+      std::vector<char> used(a.vertexCount(), 0);
+      for (size_t f = 0; f < a.triangleCount(); ++f)
+        if (triangleValid(a, f))
+          for (int k = 0; k < 3; ++k) used[a.triangles[3 * f + k]] = 1;
+      for (size_t v = 0; v < a.vertexCount(); ++v)
+        if (used[v]) hintsA.push_back((*near)[v] < b.triangleCount() ? int64_t((*near)[v]) : -1);
+    }
+    r.aToB = oneSidedMax(sa, TriangleMeshDistance(b, AabbSplit::Morton), hintsA);
+    r.bToA = oneSidedMax(sb, TriangleMeshDistance(a, AabbSplit::Morton));
+    r.meanAToB = r.meanBToA = -1;
   }
   r.hausdorff = std::max(r.aToB, r.bToA);
   r.relative = r.diagonal > 0 ? r.hausdorff / r.diagonal : 0;

@@ -89,11 +89,14 @@ Box3 boundingBox(const MeshBuffers& mesh);
 //! the mesh: it must outlive the object.
 class TriangleMeshDistance {
  public:
-  explicit TriangleMeshDistance(const MeshBuffers& mesh);
+  explicit TriangleMeshDistance(const MeshBuffers& mesh, AabbSplit split = AabbSplit::Median);
   //! Squared distance from p to the mesh, and the closest triangle (primitive −1 and infinity
   //! when the mesh has no valid triangle). hint: a triangle likely near p (e.g. the previous
   //! query's answer), or −1; the distance is the same with or without it, only faster.
-  ClosestHit closest(const Vec3& p, int64_t hint = -1) const;
+  //! stopSquared: answer the first triangle found (the hint first) at squared distance <=
+  //! stopSquared, a witness that p is that close rather than its closest triangle; when no
+  //! triangle is that close the answer is the closest. Negative (the default): always the closest.
+  ClosestHit closest(const Vec3& p, int64_t hint = -1, double stopSquared = -1.0) const;
   //! Squared distance from q to triangle f alone (an upper bound of the mesh's; infinity for an
   //! invalid triangle).
   double faceDistanceSquared(uint32_t f, const Vec3& q) const;
@@ -107,16 +110,40 @@ struct HausdorffOptions {
   //! Points sampled on each surface, area-weighted, in addition to its vertices.
   size_t samplesPerSide = 200000;
   uint64_t seed = 1;  //!< fixed seed: results are deterministic (same on native and WASM)
+  //! Also the mean distances (every sample searched for its closest triangle). Off: the means
+  //! are −1 and the maxima the same, found faster (most samples need no full search).
+  bool computeMean = false;
+  //! Optional, for speed only (the result is the same without it): for each vertex of A, a
+  //! triangle of B likely near it, e.g. the remesher's input face of each output vertex (an
+  //! index ≥ B's triangle count: none). Ignored unless it has one entry per vertex of A.
+  const std::vector<uint32_t>* nearTriangleOfVertexA = nullptr;
 };
 
-//! Sampled two-sided Hausdorff distance between meshes A and B (absolute units): the largest
-//! distance from a sample of one surface to the other surface, and the mean. Samples are the
-//! vertices plus area-weighted random points; the result is a lower bound of the true distance
-//! that converges as samples grow. `diagonal` is B's bounding-box diagonal (B is the reference,
-//! normally the input) and `relative` = hausdorff / diagonal.
+//! The points a Hausdorff distance is measured from on mesh m: every referenced vertex (in index
+//! order), then `count` area-weighted random points, triangle by triangle (the floor of each
+//! triangle's expected count plus a random rounding; uniform in the triangle, Osada et al. 2002),
+//! from a SplitMix64 stream seeded with `seed`: the same points on every platform.
+std::vector<Vec3> surfaceSamples(const MeshBuffers& m, size_t count, uint64_t seed);
+
+//! Sampled two-sided Hausdorff distance between meshes A and B (absolute units).
+//!
+//! What it certifies: aToB is the largest, over the samples p of A (surfaceSamples(a,
+//! samplesPerSide, seed)), of the distance from p to B's closest triangle as the AABB tree search
+//! computes it in double (Ericson's closest point, §5.1.5; the same per-triangle values a brute
+//! force over every triangle gives); bToA likewise over surfaceSamples(b, samplesPerSide, seed + 1)
+//! against A. Each is attained by a point of a surface, so hausdorff = max(aToB, bToA) is a lower
+//! bound of the true two-sided Hausdorff distance (up to that rounding), converging to it as the
+//! samples grow; the vertices are always among the samples. computeMean does not change the
+//! maxima: without it a sample is either searched for its closest triangle or shown, by a triangle
+//! of the other mesh at most the running maximum away, unable to raise it (early breaking; Taha &
+//! Hanbury 2015, "An efficient algorithm for calculating the exact Hausdorff distance", IEEE TPAMI
+//! 37(11)), so the maxima are those of the full search, found in a fraction of its time.
+//! `diagonal` is B's bounding-box diagonal (B is the reference, normally the input) and
+//! `relative` = hausdorff / diagonal. Single-threaded and deterministic: the same value natively
+//! and in WASM, run after run.
 struct HausdorffResult {
   double aToB = 0, bToA = 0;          //!< max one-sided distances
-  double meanAToB = 0, meanBToA = 0;  //!< mean one-sided distances
+  double meanAToB = 0, meanBToA = 0;  //!< mean one-sided distances (−1 without computeMean)
   double hausdorff = 0;               //!< max(aToB, bToA)
   double diagonal = 0;
   double relative = 0;

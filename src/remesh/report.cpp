@@ -142,6 +142,7 @@ Status reportOutput(const Surface& surf, const CurveSamples& cs, const MeshBuffe
   if (opt.computeHausdorff) {
     quality::HausdorffOptions ho;
     ho.samplesPerSide = opt.hausdorffSamples;
+    ho.nearTriangleOfVertexA = &vertexFace;  // the input face each output vertex was lifted onto: a start
     rep.hausdorffRel = quality::hausdorffDistance(out, in, ho).relative;
   }
   return topologyStatus;

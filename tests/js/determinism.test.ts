@@ -55,6 +55,20 @@ describe('remesh determinism', () => {
     });
   }
 
+  it('the report\'s Hausdorff distance is the same number natively and in WASM', async () => {
+    const cm = await init();
+    const bytes = dataFile('fandisk.off');
+    mkdirSync(tmp, { recursive: true });
+    const input = join(tmp, 'fandisk-hausdorff.off');
+    writeFileSync(input, bytes);
+    const nat = spawnSync(native, ['remesh', input, '--edge-length-rel', '0.03', '--json'], { encoding: 'utf8' });
+    expect(nat.status).toBe(0);
+    const w = cm.remesh(cm.readMesh(bytes, { fileName: 'fandisk.off' }), { targetEdgeLengthRel: 0.03 });
+    const n = JSON.parse(nat.stdout);
+    expect(n.hausdorffRel).toBeGreaterThan(0);
+    expect(w.report.hausdorffRel).toBe(n.hausdorffRel);
+  });
+
   it('src/ calls no libm transcendental or std::complex function outside src/cli/ (conformesh::dmath instead)', () => {
     const libm = /\bstd::(exp|exp2|expm1|log|log2|log10|log1p|pow|cbrt|sin|cos|tan|asin|acos|atan|atan2|sinh|cosh|tanh|hypot|erf|erfc|tgamma|lgamma|norm|arg|polar)\s*\(/;
     const offenders: string[] = [];

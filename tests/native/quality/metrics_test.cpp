@@ -3,33 +3,18 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <limits>
 #include <vector>
 
 #include "core/detmath.h"
 #include "quality/metrics.h"
+#include "quality_test_meshes.h"
 
 using namespace conformesh;
 using namespace conformesh::quality;
+using quality_test::grid;
 
 namespace {
-
-//! An n×n grid of squares on [0,1]², each split along a diagonal, lifted by z = f(x, y).
-template <class F>
-MeshBuffers grid(int n, F height) {
-  MeshBuffers m;
-  for (int j = 0; j <= n; ++j)
-    for (int i = 0; i <= n; ++i) {
-      double x = double(i) / n, y = double(j) / n;
-      m.positions.insert(m.positions.end(), {x, y, height(x, y)});
-    }
-  auto id = [n](int i, int j) { return uint32_t(j * (n + 1) + i); };
-  for (int j = 0; j < n; ++j)
-    for (int i = 0; i < n; ++i) {
-      m.triangles.insert(m.triangles.end(), {id(i, j), id(i + 1, j), id(i + 1, j + 1)});
-      m.triangles.insert(m.triangles.end(), {id(i, j), id(i + 1, j + 1), id(i, j + 1)});
-    }
-  return m;
-}
 
 //! Closed unit cube, 12 triangles, outward orientation.
 MeshBuffers cube() {
@@ -215,6 +200,7 @@ TEST_CASE("Hausdorff: a mesh to itself is 0; to a translated copy it is the tran
   MeshBuffers m = grid(8, [](double x, double y) { return 0.3 * std::sin(3 * x) * std::cos(2 * y); });
   HausdorffOptions opt;
   opt.samplesPerSide = 20000;
+  opt.computeMean = true;
   HausdorffResult self = hausdorffDistance(m, m, opt);
   CHECK(self.hausdorff < 1e-12);
   CHECK(self.samplesA >= 20000);
@@ -296,4 +282,93 @@ TEST_CASE("edge stats: the Delaunay count of one edge agrees with the sum of its
   // both outcomes occur often enough for the test to mean something
   CHECK(delaunay > 500);
   CHECK(not_ > 500);
+}
+
+namespace {
+
+//! max over the samples of `from` of the distance to the closest triangle of `to`, every triangle
+//! tried (no tree).
+double bruteForceOneSided(const MeshBuffers& from, const MeshBuffers& to, size_t samples, uint64_t seed) {
+  const TriangleMeshDistance d(to);
+  double worst = 0;
+  for (const Vec3& p : surfaceSamples(from, samples, seed)) {
+    double best = std::numeric_limits<double>::infinity();
+    for (uint32_t f = 0; f < to.triangleCount(); ++f) best = std::min(best, d.faceDistanceSquared(f, p));
+    worst = std::max(worst, best);
+  }
+  return std::sqrt(worst);
+}
+
+double wave(double x, double y) { return 0.25 * std::sin(4 * x) * std::cos(3 * y); }
+
+//! The piecewise-linear surface of grid(n, wave) at (x, y): a finer grid whose vertices are
+//! all on the coarse one (as the remesher's output vertices are on its input).
+double onCoarse(int n, double x, double y) {
+  int i = std::min(n - 1, int(x * n)), j = std::min(n - 1, int(y * n));
+  double u = x * n - i, v = y * n - j;
+  auto z = [n](int a, int b) { return wave(double(a) / n, double(b) / n); };
+  if (u >= v) return z(i, j) + u * (z(i + 1, j) - z(i, j)) + v * (z(i + 1, j + 1) - z(i + 1, j));
+  return z(i, j) + v * (z(i, j + 1) - z(i, j)) + u * (z(i + 1, j + 1) - z(i, j + 1));
+}
+
+}  // namespace
+
+TEST_CASE("Hausdorff: each side is the brute-force max over its samples, with and without the means") {
+  const MeshBuffers coarse = grid(7, wave);
+  const MeshBuffers onInput = grid(29, [](double x, double y) { return onCoarse(7, x, y); });
+  const MeshBuffers smooth = grid(23, wave);
+  const MeshBuffers lifted = grid(11, [](double x, double y) { return wave(x, y) + 0.01 * x * y; });
+  struct Pair {
+    const MeshBuffers *a, *b;
+  };
+  for (Pair pr : {Pair{&onInput, &coarse}, Pair{&smooth, &coarse}, Pair{&coarse, &smooth}, Pair{&lifted, &smooth}}) {
+    HausdorffOptions opt;
+    opt.samplesPerSide = 3000;
+    opt.seed = 5;
+    const double aToB = bruteForceOneSided(*pr.a, *pr.b, opt.samplesPerSide, opt.seed);
+    const double bToA = bruteForceOneSided(*pr.b, *pr.a, opt.samplesPerSide, opt.seed + 1);
+    const HausdorffResult fast = hausdorffDistance(*pr.a, *pr.b, opt);
+    // hints for A's vertices change the speed only, even arbitrary ones (some out of range: none)
+    std::vector<uint32_t> hints(pr.a->vertexCount());
+    for (size_t v = 0; v < hints.size(); ++v) hints[v] = uint32_t((v * 7) % (pr.b->triangleCount() + 3));
+    opt.nearTriangleOfVertexA = &hints;
+    const HausdorffResult hinted = hausdorffDistance(*pr.a, *pr.b, opt);
+    opt.nearTriangleOfVertexA = nullptr;
+    CHECK(hinted.aToB == aToB);
+    CHECK(hinted.bToA == bToA);
+    opt.computeMean = true;
+    const HausdorffResult full = hausdorffDistance(*pr.a, *pr.b, opt);
+    CHECK(aToB > 0);
+    CHECK(fast.aToB == aToB);
+    CHECK(fast.bToA == bToA);
+    CHECK(full.aToB == aToB);
+    CHECK(full.bToA == bToA);
+    CHECK(fast.hausdorff == std::max(aToB, bToA));
+    CHECK(fast.meanAToB == -1);
+    CHECK(full.meanAToB > 0);
+    CHECK(full.meanAToB <= full.aToB);
+    CHECK(fast.samplesA == full.samplesA);
+  }
+}
+
+TEST_CASE("Hausdorff: vertices on the reference measure 0; the samples between them measure the chords") {
+  const MeshBuffers coarse = grid(7, wave);
+  const MeshBuffers onInput = grid(29, [](double x, double y) { return onCoarse(7, x, y); });
+  HausdorffOptions opt;
+  opt.samplesPerSide = 0;  // vertices only
+  HausdorffResult v = hausdorffDistance(onInput, coarse, opt);
+  CHECK(v.aToB < 1e-15);
+  CHECK(v.bToA > 1e-4);  // coarse vertices between the fine grid's lines are off its surface
+  CHECK(v.bToA == bruteForceOneSided(coarse, onInput, 0, opt.seed + 1));
+  // nothing to measure against: 0, as before (no triangle, or only ones with indices out of range)
+  MeshBuffers none = coarse;
+  none.triangles = {0, 1, 9999};
+  CHECK(hausdorffDistance(coarse, none, HausdorffOptions{}).aToB == 0);
+  none.triangles.clear();
+  CHECK(hausdorffDistance(coarse, none, HausdorffOptions{}).aToB == 0);
+  // surfaceSamples: the vertices first, then the area samples, deterministic
+  const std::vector<Vec3> s1 = surfaceSamples(coarse, 500, 3), s2 = surfaceSamples(coarse, 500, 3);
+  CHECK(s1.size() >= 64 + 500 - 98);  // 64 vertices; each of 98 triangles rounds its count up or down
+  CHECK(s1 == s2);
+  CHECK(s1[9] == Vec3{1.0 / 7, 1.0 / 7, wave(1.0 / 7, 1.0 / 7)});  // vertex (1, 1) of the 8×8
 }
