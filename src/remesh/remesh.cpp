@@ -20,7 +20,9 @@
 #include "planar/predicates.h"
 #include "planar/refine.h"
 #include "quality/metrics.h"
+#include "mesh/mesh_attributes.h"
 #include "mesh/precondition.h"
+#include "remesh/carry_attributes.h"
 #include "remesh/optimize.h"
 #include "remesh/repair.h"
 #include "remesh/spot_field.h"
@@ -1743,6 +1745,15 @@ RemeshResult Pipeline::run(const MeshBuffers& input) {
       for (uint32_t& f : rp.layoutInputFace) f = vm.faceToInput[pre_.faceOrigin[f]];
     res.patchOfTriangle = triPatch;
   }
+  if (opt_.returnSurfacePoints || (opt_.carryAttributes && hasAttributes(input))) {  // remesh/carry_attributes.h
+    std::vector<uint32_t> hint(vertexFace.size(), kNone);
+    for (size_t v = 0; v < hint.size(); ++v)
+      if (vertexFace[v] < in.triangleCount()) hint[v] = vm.faceToInput[vertexFace[v]];
+    CornerPoints cp = locateCorners(input, res.mesh, hint);
+    if (opt_.carryAttributes) interpolateAttributes(input, cp, res.mesh);
+    res.cornerInputFace = std::move(cp.face);
+    res.cornerBarycentric = std::move(cp.barycentric);
+  }
   return res;
 }
 
@@ -1751,8 +1762,20 @@ RemeshResult Pipeline::run(const MeshBuffers& input) {
 RemeshResult remesh(const MeshBuffers& input, const RemeshOptions& options, ProgressFn progress) {
   RemeshResult r;
   try {
-    Pipeline p(options, progress);
+    // attribute seams are kept as feature curves (remesh/carry_attributes.h)
+    std::vector<std::array<uint32_t, 2>> seams;
+    if (options.carryAttributes) {
+      checkAttributes(input, Stage::Api);
+      seams = attributeSeams(input);
+    }
+    RemeshOptions withSeams;
+    if (!seams.empty()) {
+      withSeams = options;
+      withSeams.featureEdges.insert(withSeams.featureEdges.end(), seams.begin(), seams.end());
+    }
+    Pipeline p(seams.empty() ? options : withSeams, progress);
     r = p.run(input);
+    r.report.seamEdges = seams.size();
   } catch (const Error& e) {
     r = RemeshResult{};
     r.status = e.status();
