@@ -19,14 +19,15 @@ struct CornerPoints {
 //! Locate every corner of `output` (whose vertices lie on the surface of `input`) on `input`.
 //! A vertex is on the input faces around its closest one (AABB tree) that are as close, within
 //! 1e-9 · the input's bounding-box diagonal. When there are several (the vertex is on an input
-//! edge or vertex), each corner takes the face its triangle enters: the one whose sides through
-//! the point make the smallest angle with the direction to the triangle's centroid (the largest
-//! least cosine to their inward normals). On a seam kept as output edges (remesh keeps them as
-//! curves) every triangle is on one side, so each corner gets the face on its triangle's side and
-//! its per-corner values from there. Zero-area input faces are never chosen when another is as
-//! close. `vertexHint`: per output vertex an input face at or near it, or UINT32_MAX (a start for
-//! the search; may be empty). Cost: one closest-point query per output vertex and the faces
-//! around the closest face per corner.
+//! edge or vertex) and the input has per-corner attributes, each corner takes the face its
+//! triangle is on: the first of them reached by a breadth-first walk over input faces from the
+//! face closest to the triangle's centroid, across edges that are not attribute seams
+//! (neighboursWithinCharts), at most 4096 faces (else the one closest to the centroid). With the
+//! seams kept as output edges (remesh keeps them as curves) every triangle is on one side of
+//! each, so the corner gets its values from that side, even where a chart meets itself across a
+//! seam. Zero-area input faces are never chosen when another is as close. `vertexHint`: per
+//! output vertex an input face at or near it, or UINT32_MAX (a start for the search; may be
+//! empty). Cost: one closest-point query per output vertex, one more per triangle at a seam.
 CornerPoints locateCorners(const MeshBuffers& input, const MeshBuffers& output, const std::vector<uint32_t>& vertexHint);
 
 //! Fill output.uvs and output.attributes from input.uvs and input.attributes, interpolated at

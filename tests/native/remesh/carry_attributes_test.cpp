@@ -74,6 +74,8 @@ void checkCarried(const MeshBuffers& in, const RemeshResult& r) {
     const auto o = cornerUv(out, c);
     worstUv = std::max({worstUv, std::abs(o[0] - uv[0]), std::abs(o[1] - uv[1])});
   }
+  MESSAGE("corners " << out.triangles.size() << ": |uv - interpolated| <= " << worstUv << ", |point - vertex| / diagonal <= "
+                      << worstPos / diag << ", barycentric off by <= " << worstBary);
   CHECK(worstBary <= 1e-9);
   CHECK(worstPos <= 1e-9 * diag);
   CHECK(worstUv <= 1e-9);
