@@ -93,25 +93,6 @@ bool splitPatch(const EdgeGraph& g, Segmentation& seg, uint32_t p, uint32_t part
 //! input corner that no mesh of the surface can give better angles: the remesh exempts it.
 std::vector<double> featureWedgeAngles(const EdgeGraph& g, const Segmentation& seg);
 
-//! Cuts are ours, so where one meets another curve at a small angle (a Voronoi border arriving
-//! obliquely, three borders meeting at a point), the patch on the narrow side would have a small
-//! corner that no mesh can fix. Reroute such a cut end: from the cut's vertex about 3·scale
-//! before the end, the shortest path of input edges to a smooth point of another curve (a
-//! shortest path to a curve meets it at a right angle); kept only when the angle gets better and
-//! every patch stays a disk. Rebuilds the curves. Returns the number of ends rerouted.
-//! `region` (input faces; empty: all): only cuts beside it are rerouted (splitPatch passes the
-//! split patch, so a split does not retry every cut end of the mesh).
-uint32_t improveCutJunctions(const EdgeGraph& g, Segmentation& seg, double scale, const std::vector<uint32_t>& region = {});
-
-//! Where a cut makes a wedge below 45° at a vertex (a kink in the cut, or a cut leaving another
-//! curve at a small angle), move the cut across the wedge's faces: its edges at the vertex stop
-//! being cuts and the far edges of the wedge's faces (the rim) become the cut. Kept when the
-//! smallest wedge at the vertex and along the rim grows; every patch must stay a disk (else all
-//! moves are undone). Cuts follow input edges, so at the scale of one input edge they can
-//! zigzag: the patch there has a corner no mesh can give better angles, and the 3D certificate
-//! cannot refine it away. Returns the number of moves.
-uint32_t straightenCutEars(const EdgeGraph& g, Segmentation& seg);
-
 //! Continue every dangling feature curve (a vertex with exactly one curve edge) along the
 //! straightest path of input edges until it meets a curve, so no patch contains a slit. A step
 //! onto another curve's dangling end that would make a wedge below 45° there is taken only when

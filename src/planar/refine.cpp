@@ -148,8 +148,9 @@ class Refiner {
     const Tri& Tt = T_.tris[t];
     // The small angle is an input angle between two segments.
     if (T_.isConstrained(t, nxt(s)) && T_.isConstrained(t, prv(s))) return true;
-    // Shortest edge joins two segment vertices on segments with a common apex, equidistant.
     uint32_t p = Tt.v[nxt(s)], q = Tt.v[prv(s)];
+    if (!o_.apexOf.empty() && acrossChainWedge(p, q)) return true;
+    // Shortest edge joins two segment vertices on segments with a common apex, equidistant.
     if (p < s_.nInput || q < s_.nInput) return false;
     int32_t sp = s_.vseg[p], sq = s_.vseg[q];
     if (sp < 0 || sq < 0 || sp == sq) return false;
@@ -162,6 +163,42 @@ class Refiner {
     const double* x = T_.pt(apex);
     double d1 = dist2(T_.pt(p), x), d2 = dist2(T_.pt(q), x);
     return d1 < 1.002 * d2 && d2 < 1.002 * d1;
+  }
+
+  // RefineOptions::apexOf: the apex and chain of vertex v (an input point's own, or for a Steiner
+  // vertex those of the segment it lies on); false when it has none.
+  bool chainTag(uint32_t v, uint32_t& apex, uint32_t& chain) const {
+    if (v < s_.nInput) {
+      apex = o_.apexOf[v], chain = o_.chainOf[v];
+      return apex != kNoApex;
+    }
+    const int32_t sg = s_.vseg[v];
+    if (sg < 0) return false;
+    const uint32_t a = s_.segA[size_t(sg)], b = s_.segB[size_t(sg)];
+    if (o_.apexOf[a] == b || (o_.apexOf[a] != kNoApex && o_.apexOf[a] == o_.apexOf[b] && o_.chainOf[a] == o_.chainOf[b])) {
+      apex = o_.apexOf[a], chain = o_.chainOf[a];
+      return true;
+    }
+    if (o_.apexOf[b] == a) {
+      apex = a, chain = o_.chainOf[b];
+      return true;
+    }
+    return false;
+  }
+
+  // Edge pq spans the wedge of an apex (RefineOptions::apexOf).
+  bool acrossChainWedge(uint32_t p, uint32_t q) const {
+    uint32_t ap, cp, aq, cq;
+    if (!chainTag(p, ap, cp) || !chainTag(q, aq, cq) || ap != aq || cp == cq) return false;
+    const double* x = T_.pt(ap);
+    const double* P = T_.pt(p);
+    const double* Q = T_.pt(q);
+    const double ux = P[0] - x[0], uy = P[1] - x[1], vx = Q[0] - x[0], vy = Q[1] - x[1];
+    const double lp2 = ux * ux + uy * uy, lq2 = vx * vx + vy * vy;
+    if (!(lp2 <= 4 * lq2 && lq2 <= 4 * lp2)) return false;
+    // seen under less than θ: cos(seen)² > cos²θ with a positive cosine
+    const double dot = ux * vx + uy * vy;
+    return dot > 0 && dot * dot > cos2Bound_ * lp2 * lq2;
   }
 
  private:
@@ -563,6 +600,12 @@ RefineResult refinePslg(const Pslg& pslg, const RefineOptions& options) {
     fail(Code::InvalidArgument, Stage::Refine, "minSegmentLength must be finite and >= 0");
   if (!options.vertexSizing.empty() && options.vertexSizing.size() != pslg.points.size() / 2)
     fail(Code::InvalidArgument, Stage::Refine, "vertexSizing needs one value per input point");
+  if (!options.apexOf.empty()) {
+    const size_t n = pslg.points.size() / 2;
+    bool ok = options.apexOf.size() == n && options.chainOf.size() == n;
+    for (size_t i = 0; ok && i < n; ++i) ok = options.apexOf[i] == kNoApex || (options.apexOf[i] < n && options.apexOf[i] != i);
+    if (!ok) fail(Code::InvalidArgument, Stage::Refine, "apexOf and chainOf need one entry per input point, each apex an other input point or none");
+  }
   CdtState s;
   buildCdt(pslg, options.cdt, options.progress, s);
   Refiner ref(s, options);

@@ -11,6 +11,9 @@
 
 namespace conformesh::planar {
 
+//! No apex and no chain (RefineOptions::apexOf, chainOf).
+constexpr uint32_t kNoApex = 0xFFFFFFFFu;
+
 //! Options of refinePslg. Sizes are in the units of the input coordinates.
 struct RefineOptions {
   //! Angle bound θ in degrees: every triangle that is not exempt gets its smallest angle ≥ θ.
@@ -50,6 +53,13 @@ struct RefineOptions {
   //! Subsegments shorter than this are never split (absolute; 0: 1e-11 times the bounding-box
   //! diagonal, the default floor). A bad triangle that would need such a split stays.
   double minSegmentLength = 0.0;
+  //! Small input corners no mesh can give better angles, whose sides are chains of several
+  //! segments (a caller's input corner with its sides sampled): per input point, the input point
+  //! that is its corner (apex) and the id of the chain it lies on; empty, or kNoApex where none. A
+  //! triangle whose shortest edge joins points of two different chains of one apex, at distances
+  //! from it within a factor 2 of each other, and seen from it under less than θ, is exempt: the
+  //! wedge forces its angle (the concentric shells' rule for sides that are chains).
+  std::vector<uint32_t> apexOf, chainOf;
   //! Hard cap on Steiner vertices; hitting it stops with status IterationLimit (mesh kept).
   size_t maxInsertions = 100000000;
   //! Domain options of the CDT (convex hull, holes by orientation).

@@ -10,7 +10,7 @@
 // the bound), no planar triangle inverts, and every vertex stays on the input surface (it is
 // lifted by the pull-back). Boundary vertices (curve samples) never move here and boundary edges
 // never flip, so features and the stitch between patches are untouched; the pipeline slides the
-// curve samples along their curves itself (remesh.cpp, slideSamples), in every patch at once.
+// curve samples along their curves itself (remesh/slide_samples.h), in every patch at once.
 #pragma once
 
 #include <cstdint>

@@ -11,6 +11,8 @@
 #include "features/curve_mesh.h"
 #include "features/edge_graph.h"
 #include "features/segmentation.h"
+#include "features/close_junctions.h"
+#include "features/cut_junctions.h"
 #include "features/sizing.h"
 #include "features/test_shapes.h"
 #include "mesh/mesh_io.h"
@@ -532,4 +534,42 @@ TEST_CASE("features: improveCutJunctions with a region reroutes only the cuts be
   }
   CHECK((here == 0) == (changed == 0));
   checkPatchesAreDisks(g, local);
+}
+
+TEST_CASE("features: mergeCloseJunctions moves cut junctions off short curves; features stay, patches stay disks (camelhead, man)") {
+  for (const char* name : {"camelhead.off", "man.off"}) {
+    std::ifstream in(std::string(CONFORMESH_DATA_DIR) + "/" + name, std::ios::binary);
+    REQUIRE(in);
+    const std::vector<uint8_t> bytes((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+    const EdgeGraph g = buildEdgeGraph(readMesh(bytes).mesh);
+    FeatureOptions fo;
+    fo.minFeatureLength = 0.02 * boundingBoxDiagonal(g);  // creases as the remesh finds them at 1 %
+    const Segmentation before = segment(g, fo);            // junctionScale 0: no junction repairs
+    const double minLength = 0.25 * 0.01 * boundingBoxDiagonal(g);
+    // curves shorter than minLength with an end where only cuts meet besides it
+    const auto shortAtCutJunction = [&](const Segmentation& s) {
+      std::vector<uint32_t> nonCut(g.vertexCount, 0);
+      for (const Curve& c : s.curves)
+        if (c.kind != EdgeKind::Cut) ++nonCut[c.vertices.front()], ++nonCut[c.vertices.back()];
+      uint32_t n = 0;
+      for (const Curve& c : s.curves)
+        if (c.length < minLength && c.vertices.front() != c.vertices.back())
+          n += (nonCut[c.vertices.front()] == (c.kind != EdgeKind::Cut)) || (nonCut[c.vertices.back()] == (c.kind != EdgeKind::Cut));
+      return n;
+    };
+    Segmentation after = before;
+    const uint32_t merged = mergeCloseJunctions(g, after, minLength);
+    INFO(std::string(name) << ": " << merged << " merged; short curves at cut junctions " << shortAtCutJunction(before) << " -> "
+              << shortAtCutJunction(after));
+    CHECK(merged > 0);
+    CHECK(shortAtCutJunction(after) < shortAtCutJunction(before));
+    checkPatchesAreDisks(g, after);
+    CHECK(after.patches.size() == before.patches.size());
+    uint32_t featuresChanged = 0;  // only cuts move: features and boundaries stay as they are
+    for (uint32_t e = 0; e < g.edgeCount(); ++e)
+      featuresChanged += (before.edgeKind[e] == EdgeKind::Feature || before.edgeKind[e] == EdgeKind::Boundary ||
+                          after.edgeKind[e] == EdgeKind::Feature || after.edgeKind[e] == EdgeKind::Boundary) &&
+                         after.edgeKind[e] != before.edgeKind[e];
+    CHECK(featuresChanged == 0);
+  }
 }

@@ -201,3 +201,74 @@ TEST_CASE("random star polygons with sharp spikes, holes and interior segments")
     CHECK(c.belowAngle(r.mesh, o.minAngleDeg) <= r.exemptTriangles);
   }
 }
+
+TEST_CASE("apexOf: the triangles across a small corner whose sides are chains of segments are left as it forces them, round after round") {
+  // A 10-degree wedge whose sides are chains of points (a patch's curve samples). As in the
+  // remesh's conforming rounds, each round meshes from scratch with the previous round's boundary
+  // splits as input points, and the patch across one side takes those up at other distances
+  // (its own planar scale, here 7 % more): the concentric shells of one round are not the next
+  // round's, so the triangles across the wedge are not exempt by equal distances, and each round
+  // refines them again.
+  const double d2r = 3.14159265358979323846 / 180;
+  const auto rounds = [&](bool chains, size_t& insertions) {
+    std::vector<double> side[2] = {{0.13, 0.31, 0.55, 1.0}, {0.2, 0.45, 0.7, 1.0}};
+    const double dir[2][2] = {{1, 0}, {std::cos(10 * d2r), std::sin(10 * d2r)}};
+    insertions = 0;
+    double nearest = INFINITY;
+    for (int round = 0; round < 6; ++round) {
+      Pslg in;
+      in.points = {0, 0};
+      for (int k = 0; k < 2; ++k)
+        for (double d : side[k]) in.points.insert(in.points.end(), {d * dir[k][0], d * dir[k][1]});
+      const uint32_t n0 = uint32_t(side[0].size()), n1 = uint32_t(side[1].size());
+      in.segments = {0, 1};
+      for (uint32_t i = 1; i < n0; ++i) in.segments.insert(in.segments.end(), {i, i + 1});
+      in.segments.insert(in.segments.end(), {n0, n0 + n1});
+      for (uint32_t i = n0 + n1; i > n0 + 1; --i) in.segments.insert(in.segments.end(), {i, i - 1});
+      in.segments.insert(in.segments.end(), {n0 + 1, 0});
+      RefineOptions o;
+      o.minAngleDeg = 30;
+      o.minSegmentLength = 1e-6;
+      if (chains) {
+        o.apexOf.assign(in.points.size() / 2, kNoApex);
+        o.chainOf.assign(in.points.size() / 2, kNoApex);
+        for (uint32_t i = 1; i <= n0 + n1; ++i) o.apexOf[i] = 0, o.chainOf[i] = i <= n0 ? 0 : 1;
+      }
+      const RefineResult r = refinePslg(in, o);
+      REQUIRE(r.status.ok());
+      CHECK(r.minAngleDeg >= 30);
+      const MeshCheck c = checkMesh(r.mesh, in, true);
+      CHECK(c.inverted == 0);
+      CHECK(c.segmentsBroken == 0);
+      CHECK(c.belowAngle(r.mesh, 30) <= r.exemptTriangles);
+      insertions += r.insertions;
+      // the splits on the two sides join them; the one across side 0 sees them 7 % farther
+      bool any = false;
+      for (size_t v = in.points.size() / 2; v < r.mesh.vertexCount(); ++v) {
+        const int32_t sg = r.mesh.vertexSegment[v];
+        if (sg < 0 || uint32_t(sg) == n0) continue;  // interior, or on the far chord
+        const int k = uint32_t(sg) < n0 ? 0 : 1;
+        const double d = std::hypot(r.mesh.points[2 * v], r.mesh.points[2 * v + 1]) * (k == 0 ? 1.07 : 1.0);
+        if (d >= 1.0) continue;
+        side[k].push_back(d);
+        nearest = std::min(nearest, d);
+        any = true;
+      }
+      for (auto& sd : side) std::sort(sd.begin(), sd.end());
+      if (!any) break;
+    }
+    return std::min({nearest, side[0].front(), side[1].front()});
+  };
+  size_t plainInsertions = 0, chainedInsertions = 0;
+  const double plain = rounds(false, plainInsertions), chained = rounds(true, chainedInsertions);
+  MESSAGE("nearest side point to the apex after the rounds: " << plain << " without chains, " << chained << " with; insertions "
+                                                             << plainInsertions << ", " << chainedInsertions);
+  CHECK(chained >= plain);
+  CHECK(2 * chainedInsertions < plainInsertions);
+  RefineOptions bad;
+  bad.apexOf = {kNoApex};  // one entry for a PSLG of three points
+  Pslg tri;
+  tri.points = {0, 0, 1, 0, 0, 1};
+  tri.segments = {0, 1, 1, 2, 2, 0};
+  CHECK_THROWS(refinePslg(tri, bad));
+}

@@ -1,0 +1,433 @@
+#include "features/cut_junctions.h"
+
+#include <algorithm>
+#include <cmath>
+#include <map>
+#include <queue>
+#include <string>
+
+#include "core/detmath.h"
+#include "features/wedges.h"
+
+namespace conformesh::features {
+namespace {
+
+constexpr double kPi = 3.14159265358979323846;
+
+// The point at arc length `len` along a vertex path (its last vertex when the path is shorter).
+Vec3 pointAlong(const EdgeGraph& g, const std::vector<uint32_t>& path, double len) {
+  double acc = 0;
+  for (size_t i = 1; i < path.size(); ++i) {
+    const Vec3 a = g.positions[path[i - 1]], b = g.positions[path[i]];
+    const double l = norm(b - a);
+    if (l > 0 && acc + l >= len) return a + (b - a) * ((len - acc) / l);
+    acc += l;
+  }
+  return g.positions[path.back()];
+}
+
+// The faces of patches a and b (as they were) regrouped across the edges that are not curves now:
+// exactly two groups, each a disk.
+bool splitsIntoTwoDisks(const EdgeGraph& g, const Segmentation& seg, const std::vector<uint8_t>& mask,
+                        const std::vector<uint32_t>& a, const std::vector<uint32_t>& b) {
+  std::vector<uint32_t> faces(a);
+  faces.insert(faces.end(), b.begin(), b.end());
+  std::sort(faces.begin(), faces.end());
+  std::vector<uint32_t> label(faces.size(), kNone), stack;
+  auto slot = [&](uint32_t f) {
+    auto it = std::lower_bound(faces.begin(), faces.end(), f);
+    return it != faces.end() && *it == f ? uint32_t(it - faces.begin()) : kNone;
+  };
+  std::vector<std::vector<uint32_t>> groups;
+  for (uint32_t i0 = 0; i0 < faces.size(); ++i0) {
+    if (label[i0] != kNone) continue;
+    if (groups.size() == 2) return false;
+    label[i0] = uint32_t(groups.size());
+    groups.emplace_back();
+    stack.push_back(i0);
+    while (!stack.empty()) {
+      const uint32_t i = stack.back();
+      stack.pop_back();
+      groups.back().push_back(faces[i]);
+      for (uint32_t e : g.faceEdges[faces[i]]) {
+        if (seg.isCurveEdge(e)) continue;
+        const uint32_t o = g.edgeFaces[e][0] == faces[i] ? g.edgeFaces[e][1] : g.edgeFaces[e][0];
+        const uint32_t j = o == kNone ? kNone : slot(o);
+        if (j != kNone && label[j] == kNone) {
+          label[j] = label[i];
+          stack.push_back(j);
+        }
+      }
+    }
+  }
+  if (groups.size() != 2) return false;
+  for (const auto& gr : groups)
+    if (!extractPatch(g, mask, gr, false).isDisk()) return false;
+  return true;
+}
+
+// Whether the patches `ids` of seg (its curves rebuilt) are all disks.
+bool patchesAreDisks(const EdgeGraph& g, const Segmentation& seg, const std::vector<uint32_t>& ids) {
+  const std::vector<uint8_t> mask = seg.curveMask();
+  for (const uint32_t p : ids)
+    if (!extractPatch(g, mask, seg.patches[p], false).isDisk()) return false;
+  return true;
+}
+
+// The safety net after moving cuts (curves rebuilt): every patch is still a disk, else the
+// edge kinds are put back as they were. Returns whether the moves are kept. Every patch was a
+// disk before, and one beside no edge whose kind changed has the same faces and borders as
+// then: only the patches beside a changed edge are checked (not every patch at every split).
+bool keepCutsIfAllDisks(const EdgeGraph& g, Segmentation& seg, const std::vector<EdgeKind>& original) {
+  std::vector<uint32_t> touched;
+  for (uint32_t e = 0; e < g.edgeCount(); ++e)
+    if (seg.edgeKind[e] != original[e])
+      for (uint32_t f : g.edgeFaces[e])
+        if (f != kNone) touched.push_back(seg.facePatch[f]);
+  std::sort(touched.begin(), touched.end());
+  touched.erase(std::unique(touched.begin(), touched.end()), touched.end());
+  if (!patchesAreDisks(g, seg, touched)) {
+    seg.edgeKind = original;
+    rebuildCurves(g, seg);
+    return false;
+  }
+  seg.cutEdgeCount = 0;
+  for (EdgeKind kd : seg.edgeKind) seg.cutEdgeCount += kd == EdgeKind::Cut;
+  return true;
+}
+}  // namespace
+
+uint32_t improveCutJunctions(const EdgeGraph& g, Segmentation& seg, double scale, const std::vector<uint32_t>& region) {
+  if (!(scale > 0)) return 0;
+  std::vector<uint8_t> inRegion(g.faceCount, region.empty() ? 1 : 0);
+  for (uint32_t f : region) inRegion[f] = 1;
+  const double kAim = 60.0 * kPi / 180.0;   // ends meeting another curve below this are rerouted
+  const double kGain = 5.0 * kPi / 180.0;   // a reroute must improve the angle by this much
+  const int kPasses = 8;                     // one reroute per patch and pass
+  const size_t kTries = 6;                   // landings tried per cut end
+  const std::vector<EdgeKind> original = seg.edgeKind;
+  std::vector<uint8_t> mask = seg.curveMask();  // kept in step with seg.edgeKind below
+  auto setKind = [&](uint32_t e, EdgeKind kind) {
+    seg.edgeKind[e] = kind;
+    mask[e] = kind != EdgeKind::None;
+  };
+  std::vector<uint32_t> valence(g.vertexCount, 0);
+  std::vector<double> dist(g.vertexCount, INFINITY);
+  std::vector<uint32_t> predEdge(g.vertexCount, kNone), seen;
+  std::vector<uint8_t> changed(g.vertexCount, 0), forbidden(g.vertexCount, 0);
+  uint32_t total = 0;
+  for (int pass = 0; pass < kPasses; ++pass) {
+    std::fill(valence.begin(), valence.end(), 0);
+    for (uint32_t e = 0; e < g.edgeCount(); ++e)
+      if (seg.isCurveEdge(e)) ++valence[g.edgeVerts[e][0]], ++valence[g.edgeVerts[e][1]];
+    std::fill(changed.begin(), changed.end(), 0);
+    std::vector<uint8_t> usedPatch(seg.patches.size(), 0);
+    // the curve ends at every corner: (curve, 0 = starts there / 1 = ends there)
+    std::vector<std::vector<std::pair<uint32_t, int>>> ends(g.vertexCount);
+    for (uint32_t ci = 0; ci < seg.curves.size(); ++ci) {
+      ends[seg.curves[ci].vertices.front()].push_back({ci, 0});
+      ends[seg.curves[ci].vertices.back()].push_back({ci, 1});
+    }
+    auto fromEnd = [&](uint32_t ci, int end) {
+      std::vector<uint32_t> path = seg.curves[ci].vertices;
+      if (end) std::reverse(path.begin(), path.end());
+      return path;
+    };
+    uint32_t moved = 0;
+    for (uint32_t ci = 0; ci < seg.curves.size(); ++ci) {
+      const Curve& c = seg.curves[ci];
+      if (c.kind != EdgeKind::Cut || c.patches[0] == kNone || c.patches[1] == kNone || c.patches[0] == c.patches[1])
+        continue;
+      if (!inRegion[g.edgeFaces[c.edges[0]][0]]) continue;  // a cut has faces on both sides
+      const uint32_t A = c.patches[0], B = c.patches[1];
+      for (int end = 0; end < 2; ++end) {
+        // one reroute per patch and pass (patch ids are rebuilt between passes)
+        if (usedPatch[A] || usedPatch[B]) break;
+        const std::vector<uint32_t> path = fromEnd(ci, end);
+        const uint32_t v = path[0];
+        // a junction of three or more curve edges (an end joining a dangling feature stays)
+        if (path.size() < 3 || valence[v] < 3) continue;
+        bool stale = false;
+        for (uint32_t x : path) stale = stale || changed[x];
+        if (stale) continue;
+        const double l = std::min(scale, 0.3 * c.length);
+        const Vec3 d0 = pointAlong(g, path, l) - g.positions[v];
+        double old = kPi;
+        for (auto [cj, ej] : ends[v]) {
+          if (cj == ci && ej == end) continue;
+          std::vector<uint32_t> other = fromEnd(cj, ej);
+          old = std::min(old, angleBetween(d0, pointAlong(g, other, l) - g.positions[v]));
+        }
+        if (old >= kAim) continue;
+        // u: the cut's vertex about 3·l from the end (never its far end)
+        size_t k = 1;
+        for (double acc = 0; k + 1 < path.size(); ++k) {
+          acc += norm(g.positions[path[k]] - g.positions[path[k - 1]]);
+          if (acc >= std::min(3 * l, 0.5 * c.length)) break;
+        }
+        if (k + 1 >= path.size()) continue;
+        const uint32_t u = path[k];
+        std::vector<uint32_t> oldEdges;
+        for (size_t i = 0; i < k; ++i) {
+          uint32_t e = g.findEdge(path[i], path[i + 1]);
+          oldEdges.push_back(e);
+          setKind(e, EdgeKind::None);
+          --valence[path[i]], --valence[path[i + 1]];
+        }
+        for (size_t i = k + 1; i < path.size(); ++i) forbidden[path[i]] = 1;
+        // Dijkstra from u through vertices on no curve; every smooth curve point it reaches is a
+        // landing candidate (the nearest one meets its curve at about a right angle, but it may
+        // be on another curve or next to a corner: each candidate's angle is measured)
+        using Item = std::pair<double, uint32_t>;
+        std::priority_queue<Item, std::vector<Item>, std::greater<Item>> pq;
+        dist[u] = 0;
+        seen.push_back(u);
+        pq.push({0.0, u});
+        std::vector<uint32_t> landings;
+        const double radius = 12 * l;
+        while (!pq.empty()) {
+          auto [d, x] = pq.top();
+          pq.pop();
+          if (d > dist[x]) continue;
+          if (x != u && valence[x] > 0) {
+            landings.push_back(x);  // a landing point: the path does not go on through it
+            continue;
+          }
+          for (uint32_t kk = g.vertexEdgeStart[x]; kk < g.vertexEdgeStart[x + 1]; ++kk) {
+            const uint32_t e = g.vertexEdgeIds[kk];
+            if (seg.isCurveEdge(e)) continue;
+            const uint32_t y = g.otherVertex(e, x);
+            if (y == u || forbidden[y] || changed[y]) continue;
+            // a curve vertex is a landing point only when it is a smooth point of a curve
+            if (valence[y] > 0 && (y == v || valence[y] != 2 || seg.vertexCorner[y])) continue;
+            // no hairpin at x: the new cut must not turn back on itself there (on a fan of
+            // needle faces a shortest path can, making a wedge of a degree or two). At u the
+            // path continues the part of the cut that stays.
+            const uint32_t back = x == u ? path[k + 1] : g.otherVertex(predEdge[x], x);
+            if (angleBetween(g.positions[back] - g.positions[x], g.positions[y] - g.positions[x]) < kNarrowCutWedge) continue;
+            const double nd = d + g.edgeLength(e);
+            if (nd < dist[y] && nd <= radius) {
+              if (std::isinf(dist[y])) seen.push_back(y);
+              dist[y] = nd;
+              predEdge[y] = e;
+              pq.push({nd, y});
+            }
+          }
+        }
+        // the landings ranked (below); the first whose cut leaves two disks wins
+        const auto inAB = [&](uint32_t q) { return q == A || q == B; };
+        std::vector<std::pair<double, uint32_t>> ranked;
+        for (uint32_t x : landings) {
+          std::vector<uint32_t> cutPath;
+          for (uint32_t y = x; y != u; y = g.otherVertex(predEdge[y], y)) cutPath.push_back(y);
+          cutPath.push_back(u);
+          cutPath.insert(cutPath.end(), path.begin() + long(k) + 1, path.end());
+          const Vec3 dn = pointAlong(g, cutPath, l) - g.positions[x];
+          uint32_t cj = kNone;
+          for (uint32_t kk = g.vertexEdgeStart[x]; kk < g.vertexEdgeStart[x + 1] && cj == kNone; ++kk)
+            if (seg.isCurveEdge(g.vertexEdgeIds[kk])) cj = seg.edgeCurve[g.vertexEdgeIds[kk]];
+          // the landing curve must have exactly one side in the merged region A ∪ B, else the
+          // new cut would leave a patch touching itself at the landing point
+          if (cj == kNone || inAB(seg.curves[cj].patches[0]) == inAB(seg.curves[cj].patches[1])) continue;
+          const auto& cv = seg.curves[cj].vertices;
+          const auto it = std::find(cv.begin(), cv.end(), x);
+          if (it == cv.end()) continue;
+          std::vector<uint32_t> fwd(it, cv.end()), back(cv.begin(), it + 1);
+          std::reverse(back.begin(), back.end());
+          double now = kPi;
+          for (const auto* side : {&fwd, &back})
+            if (side->size() > 1) now = std::min(now, angleBetween(dn, pointAlong(g, *side, l) - g.positions[x]));
+          if (now > old + kGain) ranked.push_back({now, x});
+        }
+        // landings were found nearest first: those at kAim or more keep that order (the nearest
+        // good one first), the others follow by angle, largest first
+        std::stable_sort(ranked.begin(), ranked.end(), [&](const auto& p, const auto& q) {
+          const bool gp = p.first >= kAim, gq = q.first >= kAim;
+          if (gp != gq) return gp;
+          return !gp && p.first > q.first;
+        });
+        bool commit = false;
+        std::vector<uint32_t> newPath;  // from the landing point to u
+        for (size_t r = 0; r < ranked.size() && r < kTries && !commit; ++r) {
+          newPath.clear();
+          for (uint32_t x = ranked[r].second; x != u; x = g.otherVertex(predEdge[x], x)) newPath.push_back(x);
+          newPath.push_back(u);
+          for (size_t i = 0; i + 1 < newPath.size(); ++i) {
+            setKind(g.findEdge(newPath[i], newPath[i + 1]), EdgeKind::Cut);
+            ++valence[newPath[i]], ++valence[newPath[i + 1]];
+          }
+          commit = splitsIntoTwoDisks(g, seg, mask, seg.patches[A], seg.patches[B]);
+          if (!commit)  // A and B share another curve that this cut leaves on one side
+            for (size_t i = 0; i + 1 < newPath.size(); ++i) {
+              setKind(g.findEdge(newPath[i], newPath[i + 1]), EdgeKind::None);
+              --valence[newPath[i]], --valence[newPath[i + 1]];
+            }
+        }
+        for (uint32_t x : seen) dist[x] = INFINITY, predEdge[x] = kNone;
+        seen.clear();
+        for (size_t i = k + 1; i < path.size(); ++i) forbidden[path[i]] = 0;
+        if (commit) {
+          for (uint32_t x : path) changed[x] = 1;
+          for (uint32_t x : newPath) changed[x] = 1;
+          usedPatch[A] = usedPatch[B] = 1;
+          ++moved;
+        }
+        if (!commit) {
+          for (size_t i = 0; i < k; ++i) {
+            setKind(oldEdges[i], EdgeKind::Cut);
+            ++valence[path[i]], ++valence[path[i + 1]];
+          }
+        }
+      }
+    }
+    if (moved == 0) break;
+    total += moved;
+    rebuildCurves(g, seg);
+  }
+  if (total == 0 || !keepCutsIfAllDisks(g, seg, original)) return 0;
+  seg.reroutedCutEnds += total;
+  return total;
+}
+
+uint32_t straightenCutEars(const EdgeGraph& g, Segmentation& seg) {
+  const double kEar = kNarrowCutWedge;  // wedges below this are candidates
+  const double kGain = 1.0 * kPi / 180.0;  // a move must raise the smallest wedge by this much
+  constexpr int kPasses = 8;
+  constexpr size_t kMaxFan = 64;  // faces in one wedge (needle fans)
+  constexpr size_t kMaxPrune = 4096;  // edges one move may change, pruned branches included
+  const std::vector<EdgeKind> original = seg.edgeKind;
+  WedgeScratch scratch;
+  auto isCurve = [&](uint32_t e) { return seg.isCurveEdge(e); };
+  auto wedgeAround = [&](uint32_t v, const std::vector<uint32_t>& rim) {
+    double m = smallestWedge(g, v, isCurve, scratch);
+    for (uint32_t x : rim) m = std::min(m, smallestWedge(g, x, isCurve, scratch));
+    return m;
+  };
+  auto valence = [&](uint32_t x) {
+    uint32_t n = 0;
+    for (uint32_t k = g.vertexEdgeStart[x]; k < g.vertexEdgeStart[x + 1]; ++k) n += seg.isCurveEdge(g.vertexEdgeIds[k]);
+    return n;
+  };
+  auto onlyCuts = [&](uint32_t x) {
+    for (uint32_t k = g.vertexEdgeStart[x]; k < g.vertexEdgeStart[x + 1]; ++k) {
+      const EdgeKind kd = seg.edgeKind[g.vertexEdgeIds[k]];
+      if (kd == EdgeKind::Feature || kd == EdgeKind::Boundary) return false;
+    }
+    return true;
+  };
+  // after rebuildCurves: the patches of the faces beside the edges es are disks
+  std::vector<uint32_t> touched;
+  auto touchedPatchesAreDisks = [&](const std::vector<uint32_t>& es) {
+    touched.clear();
+    for (uint32_t e : es)
+      for (uint32_t f : g.edgeFaces[e])
+        if (f != kNone) touched.push_back(seg.facePatch[f]);
+    std::sort(touched.begin(), touched.end());
+    touched.erase(std::unique(touched.begin(), touched.end()), touched.end());
+    return patchesAreDisks(g, seg, touched);
+  };
+  std::vector<uint32_t> rim, rimEdges, toggled;
+  uint32_t total = 0;
+  for (int pass = 0; pass < kPasses; ++pass) {
+    uint32_t moved = 0;
+    for (uint32_t f0 = 0; f0 < g.faceCount; ++f0)
+      for (int c0 = 0; c0 < 3; ++c0)
+        for (int side = 0; side < 2; ++side) {
+          // the wedge at v from the cut edge v-a, turning away from it face by face until the
+          // next curve edge v-c; rim: a, ..., c (the far vertices of the wedge's faces)
+          const uint32_t v = g.faces[f0][c0], a = g.faces[f0][(c0 + 1 + side) % 3];
+          const uint32_t ea = g.findEdge(v, a);
+          if (ea == kNone || seg.edgeKind[ea] != EdgeKind::Cut) continue;
+          uint32_t f = f0, b = g.faces[f0][(c0 + 2 - side) % 3];
+          double angle = g.cornerAngle(f0, c0);
+          rim.assign({a, b});
+          uint32_t eb = g.findEdge(v, b);
+          while (eb != kNone && !seg.isCurveEdge(eb) && angle < kEar && rim.size() <= kMaxFan) {
+            const uint32_t nf = g.edgeFaces[eb][0] == f ? g.edgeFaces[eb][1] : g.edgeFaces[eb][0];
+            if (nf == kNone) break;
+            int cv = 0;
+            while (cv < 3 && g.faces[nf][cv] != v) ++cv;
+            if (cv == 3) break;
+            const uint32_t x = g.faces[nf][(cv + 1) % 3] == b ? g.faces[nf][(cv + 2) % 3] : g.faces[nf][(cv + 1) % 3];
+            angle += g.cornerAngle(nf, cv);
+            rim.push_back(x);
+            f = nf;
+            b = x;
+            eb = g.findEdge(v, x);
+          }
+          // (eb == ea: the walk went all the way round v, a cone of less than kEar)
+          if (eb == kNone || eb == ea || !seg.isCurveEdge(eb) || !(angle < kEar)) continue;
+          // the cut moves across the wedge's faces: every edge of their border toggles (the
+          // edges at v stop being cuts; rim edges become cuts, or stop being cuts where the
+          // rim already ran along one). No feature or boundary edge on the rim or at its inner
+          // vertices.
+          rimEdges.clear();
+          bool ok = true, oldCutOnRim = false;
+          for (size_t i = 0; i + 1 < rim.size() && ok; ++i) {
+            const uint32_t e = g.findEdge(rim[i], rim[i + 1]);
+            ok = e != kNone && (seg.edgeKind[e] == EdgeKind::None || seg.edgeKind[e] == EdgeKind::Cut) &&
+                 (i == 0 || onlyCuts(rim[i]));
+            oldCutOnRim = oldCutOnRim || (ok && seg.edgeKind[e] == EdgeKind::Cut);
+            rimEdges.push_back(e);
+          }
+          const bool cutB = seg.edgeKind[eb] == EdgeKind::Cut;
+          // v keeps no curve edge or at least two (a dangling end would be a slit)
+          if (!ok || int(valence(v)) - 1 - int(cutB) == 1) continue;
+          const double before = wedgeAround(v, rim);
+          toggled.clear();
+          auto flipKind = [&](uint32_t e) { seg.edgeKind[e] = seg.edgeKind[e] == EdgeKind::Cut ? EdgeKind::None : EdgeKind::Cut; };
+          auto toggle = [&](uint32_t e) {
+            flipKind(e);
+            toggled.push_back(e);
+          };
+          auto undo = [&]() {
+            for (auto it = toggled.rbegin(); it != toggled.rend(); ++it) flipKind(*it);
+          };
+          toggle(ea);
+          if (cutB) toggle(eb);
+          for (uint32_t e : rimEdges) toggle(e);
+          // a rim vertex left with one cut edge ends a branch that no longer separates
+          // anything: the branch goes, back to where it meets other curves. A branch that would
+          // leave a feature's end dangling keeps the old cut.
+          for (uint32_t x : rim) {
+            while (ok && valence(x) == 1) {
+              uint32_t only = kNone;
+              for (uint32_t k = g.vertexEdgeStart[x]; k < g.vertexEdgeStart[x + 1]; ++k)
+                if (seg.isCurveEdge(g.vertexEdgeIds[k])) only = g.vertexEdgeIds[k];
+              if (seg.edgeKind[only] != EdgeKind::Cut || toggled.size() > kMaxPrune) {
+                ok = false;
+                break;
+              }
+              toggle(only);
+              x = g.otherVertex(only, x);
+            }
+          }
+          ok = ok && wedgeAround(v, rim) > before + kGain;
+          // a move that took an old cut off the rim or pruned a branch regroups faces of more
+          // than two patches: it is kept only when every patch it touches stays a disk
+          // (checked at once, so that one such move cannot undo all the others at the end)
+          const bool regroups = oldCutOnRim || toggled.size() > size_t(1 + int(cutB)) + rimEdges.size();
+          if (ok && regroups) {
+            rebuildCurves(g, seg);
+            ok = touchedPatchesAreDisks(toggled);
+            if (!ok) {
+              undo();
+              rebuildCurves(g, seg);
+              continue;
+            }
+          }
+          if (ok) {
+            ++moved;
+          } else {
+            undo();
+          }
+        }
+    if (moved == 0) break;
+    total += moved;
+  }
+  if (total == 0) return 0;
+  rebuildCurves(g, seg);
+  return keepCutsIfAllDisks(g, seg, original) ? total : 0;
+}
+
+}  // namespace conformesh::features

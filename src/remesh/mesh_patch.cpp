@@ -1,0 +1,441 @@
+#include "remesh/mesh_patch.h"
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <numeric>
+#include <string>
+
+#include "core/detmath.h"
+#include "core/hilbert.h"
+#include "planar/predicates.h"
+#include "planar/refine.h"
+#include "remesh/curve_samples.h"
+
+namespace conformesh::pipeline {
+namespace {
+
+//! x² as one product (std::pow(x, 2) goes through libm in some builds).
+inline double sq(double x) { return x * x; }
+constexpr double kPi = 3.14159265358979323846;
+// Degrees added to the angle bound for the planar refinement (see meshPatch).
+constexpr double kPlanarAngleMargin = 2.0;
+// Angle (degrees) at the new vertex of the triangle an off-center (Üngör 2009) makes with the
+// shortest edge of a bad triangle: halfway between the bound and equilateral, so graded bands do
+// not stay at the bound, while the new vertex stays 1.3 edges away and insertion radii still grow
+// (docs/decisions/0012-offcenter-apex.md).
+constexpr double kOffcenterApexDeg = 45.0;
+// Shortest boundary piece a patch refinement may split, in the sizing's smallest edge length
+// (minEdgeLength, target/10 by default), on the surface: far below any size the output can mean.
+// Near a small angle between two curves the refinements of the two sides can keep splitting
+// each other's segments (each side's concentric shells are not the other's) down to 1e-9 of the
+// diagonal, every new triangle there below the bound (docs/decisions/0002).
+constexpr double kMinSegmentFactor = 1e-2;
+// Times a patch's boundary chords may be split where they cross before refinement gives up.
+constexpr int kCrossingRepairs = 8;
+
+// Vertex v of m becomes vertex id[v] (kNone: dropped) of a mesh with `count` vertices; the
+// triangles and edges follow.
+void renumberVertices(planar::PlanarMesh& m, const std::vector<uint32_t>& id, size_t count) {
+  std::vector<double> points(2 * count), param(count);
+  std::vector<int32_t> segment(count);
+  for (size_t v = 0; v < id.size(); ++v) {
+    if (id[v] == kNone) continue;
+    points[2 * size_t(id[v])] = m.points[2 * v];
+    points[2 * size_t(id[v]) + 1] = m.points[2 * v + 1];
+    segment[id[v]] = m.vertexSegment[v];
+    param[id[v]] = m.vertexParam[v];
+  }
+  m.points.swap(points);
+  m.vertexSegment.swap(segment);
+  m.vertexParam.swap(param);
+  for (uint32_t& v : m.triangles) v = id[v];
+  for (uint32_t& v : m.edges) v = id[v];
+}
+
+// Remove the vertices from index `keep` on that no triangle uses (a required point that a later
+// boundary split left outside the domain, or one inserted twice), renumbering the rest: every
+// vertex of a patch's meshing becomes an output vertex.
+void dropUnusedPoints(planar::PlanarMesh& m, size_t keep) {
+  const size_t nv = m.vertexCount();
+  std::vector<uint32_t> id(nv, kNone);
+  for (uint32_t v : m.triangles) id[v] = 0;
+  size_t next = 0;
+  bool any = false;
+  for (size_t v = 0; v < nv; ++v) {
+    if (v < keep || id[v] == 0) id[v] = uint32_t(next++);
+    else any = true;
+  }
+  if (any) renumberVertices(m, id, next);
+}
+
+// Renumber the vertices from index `keep` on along a Hilbert curve over their planar positions,
+// and order the triangles by their smallest vertex (then the others): the refinement leaves them
+// in the order its queue inserted them, all over the patch, while the lift, the optimization and
+// the certificate visit vertices by index and a vertex's star by its triangles. Neighbours in
+// memory are then neighbours in the plane (the optimization's stars, lifts and guard).
+void spatialOrder(planar::PlanarMesh& m, size_t keep) {
+  const size_t nv = m.vertexCount();
+  if (nv <= keep + 1) return;
+  std::vector<uint32_t> refined(nv - keep);
+  std::iota(refined.begin(), refined.end(), uint32_t(keep));
+  const std::vector<uint32_t> order = hilbertOrder(m.points.data(), refined);
+  std::vector<uint32_t> id(nv);
+  for (size_t v = 0; v < keep; ++v) id[v] = uint32_t(v);
+  for (size_t i = 0; i < order.size(); ++i) id[order[i]] = uint32_t(keep + i);
+  renumberVertices(m, id, nv);
+  // triangles: rotated to start at their smallest vertex (orientation kept), then sorted
+  const size_t nt = m.triangleCount();
+  std::vector<std::array<uint32_t, 3>> tris(nt);
+  for (size_t t = 0; t < nt; ++t) {
+    const uint32_t* x = &m.triangles[3 * t];
+    const int r = x[0] <= x[1] && x[0] <= x[2] ? 0 : (x[1] <= x[2] ? 1 : 2);
+    tris[t] = {x[r], x[(r + 1) % 3], x[(r + 2) % 3]};
+  }
+  std::sort(tris.begin(), tris.end());
+  for (size_t t = 0; t < nt; ++t)
+    for (int k = 0; k < 3; ++k) m.triangles[3 * t + k] = tris[t][k];
+}
+
+// Largest distance of a patch's input vertices from the plane through their centroid normal to
+// the patch's area-weighted normal (infinity when that normal vanishes: a closed-up patch).
+double slabHalfWidth(const F::PatchMesh& pm) {
+  const auto& P = pm.mesh.positions;
+  const size_t nv = pm.mesh.vertexCount();
+  if (nv == 0) return INFINITY;
+  const auto at = [&](uint32_t v) { return F::Vec3{P[3 * size_t(v)], P[3 * size_t(v) + 1], P[3 * size_t(v) + 2]}; };
+  F::Vec3 n{0, 0, 0}, c{0, 0, 0};
+  for (size_t t = 0; t < pm.mesh.triangleCount(); ++t) {
+    const uint32_t* v = &pm.mesh.triangles[3 * t];
+    n = n + F::cross(at(v[1]) - at(v[0]), at(v[2]) - at(v[0]));
+  }
+  for (uint32_t v = 0; v < nv; ++v) c = c + at(v);
+  c = c * (1.0 / double(nv));
+  const double ln = F::norm(n);
+  if (!(ln > 0)) return INFINITY;
+  n = n * (1.0 / ln);
+  double w = 0;
+  for (uint32_t v = 0; v < nv; ++v) w = std::max(w, std::abs(F::dot(n, at(v) - c)));
+  return std::isfinite(w) ? w : INFINITY;
+}
+
+// Fewer than 3 boundary samples, or all of them on one line (relative to their spread).
+bool degenerateBoundary(const std::vector<BoundaryPoint>& bp) {
+  if (bp.size() < 3) return true;
+  double minx = INFINITY, miny = INFINITY, maxx = -INFINITY, maxy = -INFINITY;
+  for (const auto& b : bp) minx = std::min(minx, b.x), maxx = std::max(maxx, b.x), miny = std::min(miny, b.y), maxy = std::max(maxy, b.y);
+  const double span = std::max(maxx - minx, maxy - miny);
+  if (!(span > 0)) return true;
+  // the point farthest from the line through the first point and the point farthest from it
+  size_t far = 0;
+  double d2 = 0;
+  for (size_t i = 1; i < bp.size(); ++i) {
+    double dd = sq(bp[i].x - bp[0].x) + sq(bp[i].y - bp[0].y);
+    if (dd > d2) d2 = dd, far = i;
+  }
+  double ex = bp[far].x - bp[0].x, ey = bp[far].y - bp[0].y, l = std::sqrt(d2), off = 0;
+  for (const auto& b : bp) off = std::max(off, std::abs((b.x - bp[0].x) * ey - (b.y - bp[0].y) * ex) / l);
+  return off < 1e-6 * span;
+}
+
+// The closed polygon through a patch's boundary points, in order.
+planar::Pslg boundaryPslg(const std::vector<BoundaryPoint>& bp) {
+  planar::Pslg pslg;
+  for (const auto& b : bp) pslg.points.insert(pslg.points.end(), {b.x, b.y});
+  for (uint32_t i = 0; i < bp.size(); ++i) pslg.segments.insert(pslg.segments.end(), {i, uint32_t((i + 1) % bp.size())});
+  return pslg;
+}
+
+// The segments of a closed boundary polygon that cross another one (or fold back onto their
+// neighbour), by exact orientation tests over all pairs: only used when refinement rejected the
+// polygon, which is rare.
+std::vector<uint32_t> crossingSegments(const planar::Pslg& pslg) {
+  const uint32_t n = uint32_t(pslg.segments.size() / 2);
+  const double* P = pslg.points.data();
+  auto pt = [&](uint32_t s, int end) { return P + 2 * pslg.segments[2 * s + end]; };
+  auto sgn = [](double x) { return (x > 0) - (x < 0); };
+  std::vector<uint8_t> bad(n, 0);
+  for (uint32_t i = 0; i < n; ++i)
+    for (uint32_t j = i + 1; j < n; ++j) {
+      const double *a = pt(i, 0), *b = pt(i, 1), *c = pt(j, 0), *d = pt(j, 1);
+      const bool adjacent = pslg.segments[2 * i + 1] == pslg.segments[2 * j] || pslg.segments[2 * j + 1] == pslg.segments[2 * i];
+      if (adjacent) {
+        // shared endpoint m, far ends x (of i) and y (of j): they fold back when collinear and
+        // on the same side of m
+        const bool iFirst = pslg.segments[2 * i + 1] == pslg.segments[2 * j];
+        const double* m = iFirst ? b : a;
+        const double* x = iFirst ? a : b;
+        const double* y = iFirst ? d : c;
+        if (planar::orient2d(x, m, y) == 0 && (x[0] - m[0]) * (y[0] - m[0]) + (x[1] - m[1]) * (y[1] - m[1]) > 0) bad[i] = bad[j] = 1;
+        continue;
+      }
+      const int o1 = sgn(planar::orient2d(a, b, c)), o2 = sgn(planar::orient2d(a, b, d));
+      const int o3 = sgn(planar::orient2d(c, d, a)), o4 = sgn(planar::orient2d(c, d, b));
+      if (o1 * o2 > 0 || o3 * o4 > 0) continue;
+      if (o1 == 0 && o2 == 0) {  // collinear: crossing only when the spans overlap
+        const int k = std::abs(b[0] - a[0]) >= std::abs(b[1] - a[1]) ? 0 : 1;
+        const double lo1 = std::min(a[k], b[k]), hi1 = std::max(a[k], b[k]), lo2 = std::min(c[k], d[k]), hi2 = std::max(c[k], d[k]);
+        if (hi1 < lo2 || hi2 < lo1) continue;
+      }
+      bad[i] = bad[j] = 1;
+    }
+  std::vector<uint32_t> out;
+  for (uint32_t i = 0; i < n; ++i)
+    if (bad[i]) out.push_back(i);
+  return out;
+}
+
+// Lift a planar point onto the input surface. The PSLG's boundary segments are chords of the
+// flattened boundary (between curve samples), so a refinement vertex near a concave stretch of
+// boundary can lie just outside the flattened patch: it is lifted from the nearest point of the
+// flattened boundary polyline instead (on the input's boundary curve, within the chord's sagitta).
+// hintFace: a face of the final layout near (x, y) to start the point location from (-1: none).
+bool liftPoint(const PatchWork& w, double x, double y, PullbackPoint& q, int hintFace = -1) {
+  const Pullback& pb = w.flat.pullback;
+  if (pb.locate(x, y, hintFace, q, 1e-9)) return true;
+  const auto& loop = w.pm.boundaryLoops[0];
+  const auto& uv = w.flat.uv;
+  double best = INFINITY, bx = x, by = y;
+  for (const auto& h : loop) {
+    uint32_t a = w.pm.mesh.triangles[3 * h.face + h.corner], b = w.pm.mesh.triangles[3 * h.face + (h.corner + 1) % 3];
+    double ex = uv[2 * b] - uv[2 * a], ey = uv[2 * b + 1] - uv[2 * a + 1], l2 = ex * ex + ey * ey;
+    double t = l2 > 0 ? std::clamp(((x - uv[2 * a]) * ex + (y - uv[2 * a + 1]) * ey) / l2, 0.0, 1.0) : 0.0;
+    double px = uv[2 * a] + t * ex, py = uv[2 * a + 1] + t * ey, d = dmath::hypot(px - x, py - y);
+    if (d < best) best = d, bx = px, by = py;
+  }
+  return std::isfinite(best) && pb.locate(bx, by, q, 1e-6);
+}
+
+// RefineOptions::apexOf and chainOf for a patch's PSLG (its boundary points first, then
+// `points` in all): a boundary point on a curve that ends at an input corner below the bound
+// (Meshing::smallCorner) has that corner's boundary point as its apex and the curve as its chain.
+// The triangles across such a wedge are then left as it forces them, as the 3D certificate
+// leaves them (certificate.h): refining them only splits the sides closer to the corner, and the
+// patches across take up each split, round after round.
+void cornerChains(const Surface& surf, const Meshing& m, const PatchWork& w, const std::vector<BoundaryPoint>& bp,
+                  size_t points, std::vector<uint32_t>& apexOf, std::vector<uint32_t>& chainOf) {
+  apexOf.clear();
+  chainOf.clear();
+  const F::CurveMesh& cm = m.samples.cm;
+  const auto corner = [&](uint32_t sample) {
+    const uint32_t v = cm.samples[sample].vertex;
+    return v != kNone && v < m.smallCorner.size() && m.smallCorner[v];
+  };
+  std::vector<uint32_t> apexSamples;  // the small corners on this patch's boundary, and their boundary points
+  std::vector<uint32_t> apexPoint;
+  for (uint32_t i = 0; i < bp.size(); ++i)
+    if (corner(bp[i].sample) && std::find(apexSamples.begin(), apexSamples.end(), bp[i].sample) == apexSamples.end())
+      apexSamples.push_back(bp[i].sample), apexPoint.push_back(i);
+  if (apexSamples.empty()) return;
+  apexOf.assign(points, planar::kNoApex);
+  chainOf.assign(points, planar::kNoApex);
+  const auto& loop = w.pm.boundaryLoops[0];
+  for (uint32_t i = 0; i < bp.size(); ++i) {
+    const F::CurveSample& smp = cm.samples[bp[i].sample];
+    if (smp.vertex != kNone && surf.seg.vertexCorner[smp.vertex]) continue;  // a corner ends every chain
+    const auto& h = loop[bp[i].loopPos];
+    const uint32_t c = surf.seg.edgeCurve[surf.g.faceEdges[w.pm.faceInput[h.face]][h.corner]];
+    if (c == kNone) continue;
+    const auto& ids = cm.curveSamples[c];
+    for (uint32_t end : {ids.front(), ids.back()}) {
+      const auto it = std::find(apexSamples.begin(), apexSamples.end(), end);
+      if (it == apexSamples.end()) continue;
+      apexOf[i] = apexPoint[size_t(it - apexSamples.begin())];
+      chainOf[i] = c;
+      break;
+    }
+  }
+}
+
+}  // namespace
+
+void meshPatch(const Surface& surf, const RemeshOptions& opt, Meshing& m, uint32_t p, bool splitSegments) {
+  PatchWork& w = *m.patches[p];
+  w.builtAt = ++m.samples.stamp;
+  w.dirty = false;
+  w.needsMesh = false;
+  w.optimized = false;
+  std::vector<BoundaryPoint> bp = boundaryPoints(surf, m.samples, w);
+  // A small patch bounded by short curves can have fewer than 3 boundary samples, or only
+  // collinear ones (two curves between the same two corners): add a sample in the middle of the
+  // longest boundary stretch (shared with the neighbour like any segment split) until it has a
+  // proper polygon.
+  for (int guard = 0; guard < 8 && degenerateBoundary(bp); ++guard) {
+    size_t longest = 0;
+    double best = -1;
+    for (size_t i = 0; i < bp.size(); ++i) {
+      // its length along the flattened boundary
+      double len = 0;
+      const auto& loop = w.pm.boundaryLoops[0];
+      for (const Piece& pc : stretch(w, bp[i], bp[(i + 1) % bp.size()], bp.size())) {
+        const auto& h = loop[pc.k];
+        uint32_t va = w.pm.mesh.triangles[3 * h.face + h.corner], vb = w.pm.mesh.triangles[3 * h.face + (h.corner + 1) % 3];
+        len += (pc.t1 - pc.t0) * dmath::hypot(w.flat.uv[2 * vb] - w.flat.uv[2 * va], w.flat.uv[2 * vb + 1] - w.flat.uv[2 * va + 1]);
+      }
+      if (len > best) best = len, longest = i;
+    }
+    addSplitSample(surf, m.samples, m.patches, w, bp, uint32_t(longest), 0.5);
+    w.builtAt = ++m.samples.stamp;
+    w.dirty = false;
+    bp = boundaryPoints(surf, m.samples, w);
+  }
+  if (degenerateBoundary(bp)) fail(Code::InternalError, Stage::Refine, "patch " + std::to_string(p) + ": its boundary samples do not make a polygon");
+  planar::Pslg pslg = boundaryPslg(bp);
+  pslg.points.insert(pslg.points.end(), w.requiredPoints.begin(), w.requiredPoints.end());
+  planar::RefineOptions ro;
+  // Diametral lenses: far fewer segment splits, so fewer samples a neighbour must take up and
+  // fewer rounds. The planar bound has a margin over the 3D one for the small angle distortion
+  // of the lift (the map is conformal only in the discrete sense; measured: ≤ ~1.5° on the
+  // models in ../shared/data with the free boundary).
+  ro.diametralLens = true;
+  ro.splitSegments = splitSegments;
+  ro.minAngleDeg = std::min(opt.minAngleDeg + kPlanarAngleMargin, 34.0);
+  // off-center factor for kOffcenterApexDeg: the off-center of factor f sits f / (2 tan(θ/2))
+  // shortest-edge lengths from that edge, where it sees the edge under 2 atan(tan(θ/2) / f)
+  // (refine.h); never above the planar default (bounds near 45° would otherwise get it)
+  if (ro.minAngleDeg > 0)
+    ro.offcenterFactor = std::min(0.95, dmath::tan(0.5 * ro.minAngleDeg * kPi / 180) / dmath::tan(0.5 * kOffcenterApexDeg * kPi / 180));
+  // Boundary pieces shorter than this are not split: far below any size the output can mean,
+  // and above the resolution at which two splits of one input edge are told apart (the sample
+  // dedupe in addSplitSample); refinements that keep splitting each other's segments stop here.
+  // A planar length l is l / s on the surface where the planar/3D scale is s: with the patch's
+  // smallest scale the limit is at most kMinSegmentFactor · minLength on the surface anywhere in
+  // the patch (less where the scale is larger), so it never stops a split the sizing asks for.
+  ro.minSegmentLength = kMinSegmentFactor * surf.sizing.minLength * *std::min_element(w.scaleSub.begin(), w.scaleSub.end());
+  // Longest-edge bound of the refinement vs the mean edge length it gives: calibrated so the
+  // mean output edge length in flat regions is the target.
+  const double kSizeFactor = 1.3;
+  // The size at a planar point: h and the planar/3D scale interpolated in the face of the
+  // flattened triangulation that contains it (it has the sub-mesh's vertices), found by a walk
+  // from the face of the previous query (the refinement asks about nearby points in a row).
+  const Pullback& pb = w.flat.pullback;
+  int sizingFace = -1;
+  const SpotField spots(w.spots);
+  ro.sizing = [&](double x, double y) {
+    int fv[3];
+    double b[3];
+    if (!pb.locateLayout(x, y, sizingFace, fv, b, 1e-6)) return double(INFINITY);
+    double h = 0, s = 0;
+    for (int c = 0; c < 3; ++c) {
+      h += b[c] * w.hSub[uint32_t(fv[c])];
+      s += b[c] * w.scaleSub[uint32_t(fv[c])];
+    }
+    return spots.size(x, y, kSizeFactor * h * s);
+  };
+  double area3 = 0;
+  for (uint32_t f : w.pm.faceInput) area3 += surf.g.faceArea(f);
+  ro.maxInsertions = size_t(std::min(4e7, 50.0 * area3 / (surf.sizing.minLength * surf.sizing.minLength) + 1e5));
+  planar::RefineResult rr;
+  for (int attempt = 0;; ++attempt) {
+    cornerChains(surf, m, w, bp, pslg.points.size() / 2, ro.apexOf, ro.chainOf);
+    try {
+      rr = planar::refinePslg(pslg, ro);
+      break;
+    } catch (const Error& e) {
+      if (e.code() != Code::InvalidPslg || attempt >= kCrossingRepairs) throw;
+    }
+    // The chords between boundary samples cross where the boundary doubles back within a sample
+    // spacing: split the crossing chords (shared with the neighbours like any segment split)
+    // and try again.
+    const std::vector<uint32_t> crossing = crossingSegments(pslg);
+    if (crossing.empty()) fail(Code::InternalError, Stage::Refine, "patch " + std::to_string(p) + ": invalid boundary, but no chords cross");
+    for (uint32_t sg : crossing) addSplitSample(surf, m.samples, m.patches, w, bp, sg, 0.5);
+    w.builtAt = ++m.samples.stamp;
+    w.dirty = false;
+    bp = boundaryPoints(surf, m.samples, w);
+    pslg = boundaryPslg(bp);
+    pslg.points.insert(pslg.points.end(), w.requiredPoints.begin(), w.requiredPoints.end());
+  }
+  if (!rr.status.ok()) fail(rr.status.code, Stage::Refine, "patch " + std::to_string(p) + ": " + rr.status.message);
+  dropUnusedPoints(rr.mesh, bp.size());
+  spatialOrder(rr.mesh, bp.size());
+  const auto& pmsh = rr.mesh;
+  auto tl = std::chrono::steady_clock::now();
+  const size_t nv = pmsh.vertexCount();
+  w.localToGlobal.assign(nv, kNone);
+  w.interiorPositions.assign(nv, F::Vec3{});
+  w.layoutFaces.assign(nv, -1);
+  w.liftFaces.assign(nv, kNone);
+  w.optimizeCache = {};
+  int lastFace = -1;
+  for (size_t v = 0; v < nv; ++v) {
+    if (v < bp.size()) {
+      w.localToGlobal[v] = bp[v].sample;
+      continue;
+    }
+    // every segment is a boundary chord (the required points are free), so a Steiner vertex on
+    // a segment is a boundary split (segment i joins boundary points i and i + 1)
+    if (const int32_t sg = pmsh.vertexSegment[v]; sg >= 0) {
+      const uint32_t bs = uint32_t(sg);
+      const double bt = pmsh.vertexParam[v];
+      w.localToGlobal[v] = addSplitSample(surf, m.samples, m.patches, w, bp, bs, bt);
+      continue;
+    }
+    // the walk starts from the previous vertex's face (consecutive refinement vertices are
+    // mostly near each other); a hinted locate finds the same point as the grid search
+    PullbackPoint q;
+    if (!liftPoint(w, pmsh.points[2 * v], pmsh.points[2 * v + 1], q, lastFace))
+      fail(Code::NumericalFailure, Stage::Lift, "a refinement vertex lies outside the flattened patch");
+    lastFace = q.layoutFace;
+    w.interiorPositions[v] = {q.position[0], q.position[1], q.position[2]};
+    w.layoutFaces[v] = q.layoutFace;
+    w.liftFaces[v] = w.pm.faceInput[q.face];
+  }
+  w.triangles = pmsh.triangles;
+  w.planarPoints = pmsh.points;
+  m.liftSeconds += elapsed(tl);
+}
+
+void optimizeMesh(const Surface& surf, const RemeshOptions& opt, Meshing& m, uint32_t p, RemeshReport& rep,
+                  const std::vector<uint8_t>& active) {
+  PatchWork& w = *m.patches[p];
+  w.optimized = true;
+  if (!opt.optimize || opt.optimizeIterations == 0) return;
+  auto t0 = std::chrono::steady_clock::now();
+  const size_t nv = w.planarPoints.size() / 2;
+  std::vector<F::Vec3> pos(nv);
+  std::vector<uint8_t> fixed(nv, 0);
+  for (size_t v = 0; v < nv; ++v) {
+    fixed[v] = w.localToGlobal[v] != kNone;
+    pos[v] = fixed[v] ? m.samples.cm.samples[w.localToGlobal[v]].position : w.interiorPositions[v];
+  }
+  optimization::OptimizeOptions oo;
+  oo.minAngleDeg = opt.minAngleDeg;
+  oo.maxIterations = opt.optimizeIterations;
+  oo.tolerance = opt.optimizeTolerance;
+  // per vertex: the layout face its latest lift landed in, where the next one starts looking
+  auto lift = [&](uint32_t v, double x, double y, F::Vec3& out) {
+    PullbackPoint q;
+    if (!liftPoint(w, x, y, q, w.layoutFaces[v])) return false;
+    w.layoutFaces[v] = q.layoutFace;
+    w.liftFaces[v] = w.pm.faceInput[q.face];  // of the latest candidate: a hint, near the kept one
+    out = {q.position[0], q.position[1], q.position[2]};
+    return true;
+  };
+  // the patch's input vertices guard every optimization (optimize.h): no move or flip takes the
+  // output farther from them than the chord tolerance, or farther than it was: unguarded, the
+  // first one raised the Hausdorff distance for no gain in angles (docs/decisions/0011)
+  optimization::SurfaceSamples guard;
+  const double tolerance = surf.chordTolerance;
+  // a patch within tolerance/2 of a plane needs no guard: the input patch and every output
+  // triangle over it (vertices on the input) lie in that slab and share the boundary curves, so
+  // no moving can take the output farther than the tolerance from the input there (a CAD model's
+  // flat faces), and the guard's bucketing is saved
+  if (w.slabHalfWidth < 0) w.slabHalfWidth = slabHalfWidth(w.pm);
+  if (!(w.slabHalfWidth <= 0.5 * tolerance)) {
+    guard.xy = w.flat.uv;
+    guard.pos.resize(w.pm.vertexInput.size());
+    for (size_t v = 0; v < guard.pos.size(); ++v) guard.pos[v] = surf.g.positions[w.pm.vertexInput[v]];
+    guard.tolerance = tolerance;
+  }
+  // between two optimizations of one meshing only slides move vertices, and `active` has every
+  // vertex of a slid sample's stars
+  optimization::OptimizeStats st = optimization::optimizePatch(w.planarPoints, w.triangles, pos, fixed, lift, oo, active, guard, &w.optimizeCache);
+  for (size_t v = 0; v < nv; ++v)
+    if (!fixed[v]) w.interiorPositions[v] = pos[v];
+  rep.optimizeMoves += st.moves;
+  rep.optimizeFlips += st.flips;
+  m.optimizeSeconds += elapsed(t0);
+}
+
+}  // namespace conformesh::pipeline

@@ -1,0 +1,150 @@
+#include "remesh/report.h"
+
+#include <algorithm>
+#include <cmath>
+#include <string>
+#include <unordered_map>
+
+#include "quality/metrics.h"
+
+namespace conformesh::pipeline {
+namespace {
+
+constexpr double kPi = 3.14159265358979323846;
+
+//! How the output's topology differs from the input's ("Euler characteristic 3 vs 2, 1
+//! non-manifold edge"), or "" when it has the input's components, boundary loops and Euler
+//! characteristic and no non-manifold edge or vertex.
+std::string topologyDifference(const quality::TopologySummary& out, const quality::TopologySummary& in) {
+  std::string s;
+  const auto add = [&](const std::string& what) { s += (s.empty() ? "" : ", ") + what; };
+  const auto count = [](size_t n, const char* one, const char* many) { return std::to_string(n) + " " + (n == 1 ? one : many); };
+  if (out.components != in.components) add(std::to_string(out.components) + " components vs " + std::to_string(in.components));
+  if (out.boundaryLoops != in.boundaryLoops)
+    add(std::to_string(out.boundaryLoops) + " boundary loops vs " + std::to_string(in.boundaryLoops));
+  if (out.euler != in.euler) add("Euler characteristic " + std::to_string(out.euler) + " vs " + std::to_string(in.euler));
+  if (out.genus >= 0 && in.genus >= 0 && out.genus != in.genus)
+    add("genus " + std::to_string(out.genus) + " vs " + std::to_string(in.genus));
+  if (out.nonManifoldEdges > 0) add(count(out.nonManifoldEdges, "non-manifold edge", "non-manifold edges"));
+  if (out.nonManifoldVertices > 0) add(count(out.nonManifoldVertices, "non-manifold vertex", "non-manifold vertices"));
+  return s;
+}
+
+}  // namespace
+
+Status reportOutput(const Surface& surf, const CurveSamples& cs, const MeshBuffers& out, const std::vector<uint32_t>& vertexFace,
+                    ExemptCorners& exempt, const RemeshOptions& opt, RemeshReport& rep) {
+  const MeshBuffers& in = surf.input();
+  std::vector<double> triMinRad;  // per triangle, NaN when degenerate
+  auto as = quality::angleStats(out, &triMinRad);
+  rep.triangles = out.triangleCount();
+  rep.vertices = out.vertexCount();
+  rep.minAngle = as.minAngle;
+  rep.maxAngle = as.maxAngle;
+  rep.meanMinAngle = as.meanMinAngle;
+  rep.pctBelow20 = as.pctBelow20;
+  rep.pctBelow26 = as.pctBelow26;
+  rep.pctBelow30 = as.pctBelow30;
+  if (as.triangles > 0) {
+    size_t at40 = 0, at50 = 0;
+    for (int b = 8; b < 13; ++b) at40 += as.minAngleHistogram[b];
+    for (int b = 10; b < 13; ++b) at50 += as.minAngleHistogram[b];
+    rep.pctMinAtLeast40 = 100.0 * double(at40) / double(as.triangles);
+    rep.pctMinAtLeast50 = 100.0 * double(at50) / double(as.triangles);
+  }
+  rep.minAngleOutsideExempt = 180;
+  exempt.indexWedges(surf, cs);
+  std::unordered_map<uint32_t, size_t> cornerIndex;
+  for (size_t i = 0; i < rep.exemptCorners.size(); ++i) cornerIndex[rep.exemptCorners[i].outputVertex] = i;
+  for (size_t t = 0; t < out.triangleCount(); ++t) {
+    const uint32_t* tv = &out.triangles[3 * t];
+    bool ex = false;
+    for (int c = 0; c < 3; ++c)
+      if (exempt.vertex[tv[c]]) {
+        ex = true;
+        rep.exemptCorners[cornerIndex.at(tv[c])].triangles.push_back(uint32_t(t));
+      }
+    if (!ex) {
+      const uint32_t corner = exempt.cornerOf(out, t, opt.minAngleDeg);
+      if (corner != kNone) {
+        ex = true;
+        rep.exemptCorners[cornerIndex.at(corner)].triangles.push_back(uint32_t(t));
+      }
+    }
+    if (ex) continue;
+    // the same value as triangleMinAngle (the same atan2s; degrees are monotone in radians)
+    const double a = std::isnan(triMinRad[t]) ? triangleMinAngle(out, t) : triMinRad[t] * 180.0 / kPi;
+    rep.minAngleOutsideExempt = std::min(rep.minAngleOutsideExempt, a);
+    if (a < opt.minAngleDeg) ++rep.trianglesBelowBoundOutsideExempt;
+  }
+  const quality::EdgeTopology et = quality::edgeStatsAndTopology(out);
+  rep.meanEdgeLength = et.edges.meanLength;
+  rep.delaunayFraction = et.edges.delaunayFraction;
+  const quality::TopologySummary ti = quality::topologySummary(in), &to = et.topology;
+  // a broken mesh is never a success: a defect here is a bug of the stitch or the repair
+  const std::string defect = topologyDifference(to, ti);
+  rep.topologyPreserved = defect.empty();
+  Status topologyStatus;
+  if (!defect.empty()) {
+    topologyStatus = Status{Code::InternalError, Stage::Report, "output topology differs from the input: " + defect};
+    if (!opt.keepDefectiveOutput) fail(topologyStatus.code, topologyStatus.stage, topologyStatus.message);
+  }
+  // feature curves kept: every pair of consecutive samples is an output edge
+  // (vertex -> neighbours in compressed rows: a hash set of every edge cost 5x more here)
+  std::vector<uint32_t> nbrStart(out.vertexCount() + 1, 0), nbr(2 * out.triangles.size());
+  for (uint32_t v : out.triangles) nbrStart[v + 1] += 2;
+  for (size_t v = 0; v < out.vertexCount(); ++v) nbrStart[v + 1] += nbrStart[v];
+  {
+    std::vector<uint32_t> fill(nbrStart.begin(), nbrStart.end() - 1);
+    for (size_t t = 0; t < out.triangles.size(); t += 3)
+      for (int c = 0; c < 3; ++c) {
+        uint32_t a = out.triangles[t + c], b = out.triangles[t + (c + 1) % 3];
+        nbr[fill[a]++] = b;
+        nbr[fill[b]++] = a;
+      }
+  }
+  auto isEdge = [&](uint32_t a, uint32_t b) {
+    return std::find(nbr.begin() + nbrStart[a], nbr.begin() + nbrStart[a + 1], b) != nbr.begin() + nbrStart[a + 1];
+  };
+  for (size_t c = 0; c < surf.seg.curves.size(); ++c) {
+    if (surf.seg.curves[c].kind == F::EdgeKind::Cut) continue;
+    ++rep.featureCurves;
+    bool kept = true;
+    const auto& ids = cs.cm.curveSamples[c];
+    for (size_t i = 0; i + 1 < ids.size() && kept; ++i) {
+      kept = isEdge(ids[i], ids[i + 1]);
+    }
+    rep.featureCurvesKept += kept;
+  }
+  rep.sharpEdges = surf.seg.sharpEdgeCount;
+  rep.cutEdges = surf.seg.cutEdgeCount;
+  rep.droppedFeatureEdges = surf.seg.droppedFeatureEdges;
+  rep.curves = surf.seg.curves.size();
+  rep.curveSamples = cs.cm.samples.size();
+  {
+    quality::TriangleMeshDistance dist(in);
+    double worst = 0;
+    int64_t hint = -1;  // consecutive output vertices are near each other (curves, then patches)
+    for (size_t v = 0; v < out.vertexCount(); ++v) {
+      const quality::Vec3 p{out.positions[3 * v], out.positions[3 * v + 1], out.positions[3 * v + 2]};
+      // the input face the vertex was lifted onto (or one beside its curve sample) bounds its
+      // distance: at most the worst so far, the vertex cannot change the maximum
+      if (vertexFace[v] < in.triangleCount()) {
+        hint = vertexFace[v];
+        if (dist.faceDistanceSquared(vertexFace[v], p) <= worst) continue;
+      }
+      auto hit = dist.closest(p, hint);
+      hint = hit.primitive;
+      worst = std::max(worst, hit.distanceSquared);
+    }
+    rep.maxDistanceToInputRel = std::sqrt(worst) / surf.sizing.diagonal;
+  }
+  if (opt.computeHausdorff) {
+    quality::HausdorffOptions ho;
+    ho.samplesPerSide = opt.hausdorffSamples;
+    rep.hausdorffRel = quality::hausdorffDistance(out, in, ho).relative;
+  }
+  return topologyStatus;
+}
+
+}  // namespace conformesh::pipeline

@@ -1,0 +1,29 @@
+// conformesh — the rounds: every patch meshed until the patches agree on their curve samples
+// (conforming rounds), optimized, the samples slid, the result stitched and judged by the 3D
+// angle certificate, which asks for smaller triangles where it fails; the best round is kept.
+#pragma once
+
+#include <chrono>
+
+#include "remesh/certificate.h"
+#include "remesh/pipeline.h"
+
+namespace conformesh::pipeline {
+
+//! The best stitched round: fewest stitch defects, then fewest collapsed triangles, then fewest
+//! below the bound outside exempt corners.
+struct BestRound {
+  MeshBuffers out;
+  std::vector<uint32_t> triPatch;    //!< per output triangle its patch
+  std::vector<uint32_t> vertexFace;  //!< per output vertex an input face (stitch.h)
+  size_t bad = 0;                    //!< its triangles below the bound outside exempt corners
+  std::vector<RemeshPatch> patches;  //!< with RemeshOptions::returnPatches
+};
+
+//! Run the rounds on the flattened patches, up to RemeshOptions::maxCertificateRounds (and a
+//! few more while a stitch defect is left). m.samples ends with the best round's curve samples;
+//! `exempt` is found on the first round. The time goes to rep.seconds.refine from `clock`.
+BestRound meshRounds(const Surface& surf, const RemeshOptions& opt, const Progress& progress, Meshing& m,
+                     ExemptCorners& exempt, RemeshReport& rep, std::chrono::steady_clock::time_point& clock);
+
+}  // namespace conformesh::pipeline
