@@ -5,6 +5,7 @@
 #include <cmath>
 #include <string>
 
+#include "mesh/mesh_checks.h"
 
 namespace conformesh {
 
@@ -12,6 +13,11 @@ void checkAttributes(const MeshBuffers& mesh, Stage stage) {
   const size_t nv = mesh.vertexCount(), nt = mesh.triangleCount();
   if (!mesh.uvs.empty() && mesh.uvs.size() != 2 * nv)
     fail(Code::InvalidArgument, stage, "uvs must be empty or hold 2 values per vertex");
+  if (!mesh.attributes.empty() && mesh.triangles.size() % 3 != 0)
+    fail(Code::InvalidArgument, stage, "triangles size is not a multiple of 3");
+  if (!mesh.attributes.empty())
+    for (uint32_t t : mesh.triangles)
+      if (t >= nv) fail(Code::IndexOutOfRange, stage, "triangle index " + std::to_string(t) + " >= vertex count");
   for (const MeshAttribute& a : mesh.attributes) {
     if (a.name.empty()) fail(Code::InvalidArgument, stage, "an attribute has no name");
     if (a.components == 0) fail(Code::InvalidArgument, stage, "attribute '" + a.name + "' has 0 components");
@@ -56,9 +62,9 @@ template <class F>
 void forEachInteriorEdge(const MeshBuffers& m, F&& f) {
   std::vector<Side> sides;
   sides.reserve(m.triangles.size());
-  for (uint32_t t = 0; t < m.triangleCount(); ++t) {
+  // the triangles validation keeps (no repeated vertex, not exactly collinear)
+  for (uint32_t t : detail::filterDegenerateFaces(m, true).faceToInput) {
     const uint32_t* v = &m.triangles[3 * size_t(t)];
-    if (v[0] == v[1] || v[1] == v[2] || v[2] == v[0]) continue;
     for (uint32_t c = 0; c < 3; ++c) {
       const uint32_t p = v[c], q = v[(c + 1) % 3];
       sides.push_back({std::min(p, q), std::max(p, q), t, c});

@@ -23,7 +23,8 @@ inline bool hasAttributes(const MeshBuffers& mesh) { return !mesh.uvs.empty() ||
 //! whose two triangles give different values (any attribute, any component) at one of its ends,
 //! and every edge with a single triangle or more than two is not a seam. A uv seam is where a
 //! texture chart ends: remesh keeps these edges as feature curves (RemeshOptions::carryAttributes).
-//! Values are compared exactly, as a file gives them. Triangles with a repeated vertex are skipped.
+//! Values are compared exactly, as a file gives them. Triangles validation drops (a repeated vertex,
+//! exactly zero area) are left out. Pre: checkAttributes passed.
 std::vector<std::array<uint32_t, 2>> attributeSeams(const MeshBuffers& mesh);
 
 //! Per triangle side (side k of triangle t, from corner k to k + 1, is item 3·t + k), the

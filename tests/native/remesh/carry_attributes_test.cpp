@@ -227,6 +227,21 @@ TEST_CASE("carry attributes: a plane with two texture charts keeps its seam, eac
   CHECK(plain.cornerInputFace.empty());
 }
 
+TEST_CASE("carry attributes: malformed attributes fail cleanly") {
+  MeshBuffers in = twoChartPlane(2);
+  in.attributes[0].values.pop_back();  // a uv short
+  CHECK(remesh(in).status.code == Code::InvalidArgument);
+  in = twoChartPlane(2);
+  in.triangles[4] = 99;  // no such vertex (the seams are looked for before validation)
+  CHECK(remesh(in).status.code == Code::IndexOutOfRange);
+  in = twoChartPlane(2);
+  in.attributes[2].values[0] = NAN;
+  CHECK(remesh(in).status.code == Code::NonFiniteCoordinate);
+  RemeshOptions o;
+  o.carryAttributes = false;  // not looked at
+  CHECK(remesh(in, o).status.ok());
+}
+
 TEST_CASE("carry attributes: a torus chart meeting itself across two seams") {
   const MeshBuffers in = seamedTorus(24, 12);
   RemeshOptions o;
