@@ -94,8 +94,8 @@ struct WriteOptions {
   //! one per distinct value) and drops the others; PLY writes every per-vertex attribute as
   //! vertex properties ("normal" as double nx ny nz, "color" as uchar red green blue [alpha],
   //! 255 · value rounded, others as double by name, name_0, name_1, ... for several components)
-  //! and every per-corner one as a face list property of 3 · components doubles by its name.
-  //! Ignored by OFF and STL.
+  //! and every per-corner one as a face list property of 3 · components doubles by its name (the
+  //! PLY reader reads back only `texcoord`). Ignored by OFF and STL.
   bool writeAttributes = true;
 };
 
