@@ -8,6 +8,7 @@
 #include <cstdio>
 #include <string>
 
+#include "conformal/flow.h"
 #include "conformal/layout.h"
 #include "conformal/triangle_geometry.h"
 #include "core/detmath.h"
@@ -17,15 +18,9 @@ namespace conformesh::conformal {
 namespace {
 
 using IT = IntrinsicTriangulation;
-using Clock = std::chrono::steady_clock;
+using detail::Clock;
+using detail::ScopedTimer;
 
-// Adds the wall time of its scope to a counter (phase profile of the flow).
-struct ScopedTimer {
-  double& acc;
-  Clock::time_point t0 = Clock::now();
-  explicit ScopedTimer(double& a) : acc(a) {}
-  ~ScopedTimer() { acc += std::chrono::duration<double>(Clock::now() - t0).count(); }
-};
 
 void faceAngles(const IT& T, int f, const std::vector<double>& u, double ang[3], bool* valid = nullptr) {
   double lam[3];
@@ -140,72 +135,9 @@ long long flipToDelaunayWithAngles(IT& T, const std::vector<double>& u, long lon
   return done;
 }
 
-class Flow {
- public:
-  Flow(IT& T, const FlowOptions& o, const ProgressFn& p) : T_(T), opt_(o), progress_(p) {}
-  FlowResult run();
+}  // namespace
 
- private:
-  void setupBoundary();
-  void setGauge(int pins);
-  bool circle_ = false;
-  int pins_ = 1;
-  void updateTargets();
-  // Flip, angles, curvature, targets and the gradient for the current u. Returns false when a
-  // triangle violates the triangle inequality.
-  bool evaluate();
-  void gatherGradient();  // grad_ from K_ and Kbar_ for the current unknowns
-  long long maxFlips() const { return 200LL * T_.nE + 10000; }
-
-  IT& T_;
-  const FlowOptions& opt_;
-  const ProgressFn& progress_;
-  std::vector<double> u_, angle_, K_, Kbar_, grad_;
-  std::vector<char> valid_;  // per face: triangle inequality holds
-  std::vector<int> free_;  // per vertex: unknown index or -1 (fixed)
-  int nFree_ = 0;
-  int outer_ = 0;
-  std::vector<char> loopNeumann_;  // per loop: targets from the circle / corner rule
-  // Derivative of the circle targets of one loop (see applyTargetJacobian).
-  struct LoopJacobian {
-    int loop = -1;
-    double sgn = 1, W = 0;
-    std::vector<double> w;  // per loop edge: q / sqrt(1 - q^2), q = c / 2R
-  };
-  std::vector<LoopJacobian> jac_;
-  void applyTargetJacobian(const Eigen::VectorXd& x, Eigen::VectorXd& y) const;
-  // Newton's linear systems. The Hessian is the cotangent Laplacian L(u), applied matrix-free
-  // from per-halfedge weights; it is preconditioned by a sparse Cholesky factor of L at an
-  // earlier u. L changes little along the flow (a conformal scaling moves the angles only by
-  // O(h |grad u|) per triangle, and only a few flips happen), so a factor is reused for every
-  // Newton step and refreshed only when the preconditioned Krylov solver needs more than
-  // kFreshFactorIterations: inexact Newton (Dembo–Eisenstat–Steihaug 1982) with forcing term
-  // eta = min(1e-2, error), which keeps the local convergence quadratic.
-  static constexpr int kFreshFactorIterations = 25;
-  void computeWeights();
-  void applyL(const Eigen::VectorXd& x, Eigen::VectorXd& y) const;
-  void applyPreconditioner(const Eigen::VectorXd& r, Eigen::VectorXd& z);
-  void factor();
-  bool factorCovers() const;
-  bool pcg(const Eigen::VectorXd& b, Eigen::VectorXd& x, double tol, int maxIt);
-  bool gmres(const Eigen::VectorXd& b, Eigen::VectorXd& x, double tol, int maxIt);
-  bool solveNewton(const Eigen::VectorXd& b, Eigen::VectorXd& x, bool moving, double tol);
-  std::vector<double> cornerKbar_;  // per vertex: NaN unless a corner
-  std::vector<double> w_;           // per halfedge: 1/2 cot of the opposite angle (Newton point)
-  Eigen::SimplicialLDLT<Eigen::SparseMatrix<double>> solver_;
-  bool factored_ = false;
-  std::vector<int> factorIndex_;    // per vertex: unknown of the factored matrix, or -1
-  // The factor P L D L' P' as plain arrays for the preconditioner's solves: L's values in single
-  // precision (|L_ij| <= 1 for this diagonally dominant M-matrix, and a preconditioner needs no
-  // more digits; the Krylov solver works in double), which cuts the memory traffic that bounds
-  // the triangular solves by a third. slot_: per free unknown, its row in the permuted factor.
-  std::vector<int> lStart_, lRow_, slot_;
-  std::vector<float> lVal_;
-  std::vector<double> dInv_, y_;
-  std::vector<Eigen::Triplet<double>> trip_;
-  Eigen::SparseMatrix<double> L_;
-  FlowResult R_;
-};
+namespace detail {
 
 void Flow::setupBoundary() {
   const int nL = int(T_.loops.size());
@@ -398,220 +330,6 @@ void Flow::applyTargetJacobian(const Eigen::VectorXd& x, Eigen::VectorXd& y) con
   }
 }
 
-void Flow::computeWeights() {
-  w_.resize(size_t(3) * T_.nF);
-  for (int h = 0; h < 3 * T_.nF; ++h) w_[h] = 0.5 * cotOfAngle(angle_[h]);
-}
-
-// y = L x over the free unknowns (fixed vertices are zero in x): L_ii = sum w, L_ij = -w.
-void Flow::applyL(const Eigen::VectorXd& x, Eigen::VectorXd& y) const {
-  y.setZero(nFree_);
-  const int nH = 3 * T_.nF;
-  for (int h = 0; h < nH; ++h) {
-    const int fi = free_[T_.vert[h]], fj = free_[T_.tip(h)];
-    const double d = w_[h] * ((fi >= 0 ? x[fi] : 0.0) - (fj >= 0 ? x[fj] : 0.0));
-    if (fi >= 0) y[fi] += d;
-    if (fj >= 0) y[fj] -= d;
-  }
-}
-
-// Whether every current unknown is an unknown of the factored matrix. The factor is built over
-// the vertices that no gauge fixes (Free: all but the outer loop; otherwise all but the first
-// outer vertex), so for the 3-pin Möbius gauge it is the inverse of a slightly larger matrix,
-// restricted: a rank-2 difference that the Krylov solver absorbs in a couple of iterations.
-bool Flow::factorCovers() const {
-  if (!factored_) return false;
-  for (int v = 0; v < T_.nV; ++v)
-    if (free_[v] >= 0 && factorIndex_[v] < 0) return false;
-  return true;
-}
-
-void Flow::factor() {
-  ScopedTimer ta(R_.profile.assemble);
-  factorIndex_.assign(T_.nV, -1);
-  int n = 0;
-  const auto& outerLoop = T_.loops[outer_];
-  std::vector<char> fixed(T_.nV, 0);
-  if (opt_.boundary == BoundaryCondition::Free)
-    for (int v : outerLoop) fixed[v] = 1;
-  else
-    fixed[outerLoop[0]] = 1;
-  for (int v = 0; v < T_.nV; ++v)
-    if (!fixed[v]) factorIndex_[v] = n++;
-  trip_.clear();
-  trip_.reserve(size_t(T_.nF) * 12);
-  for (int h = 0; h < 3 * T_.nF; ++h) {
-    const double w = w_[h];
-    const int fi = factorIndex_[T_.vert[h]], fj = factorIndex_[T_.tip(h)];
-    if (fi >= 0) trip_.emplace_back(fi, fi, w);
-    if (fj >= 0) trip_.emplace_back(fj, fj, w);
-    if (fi >= 0 && fj >= 0) {
-      trip_.emplace_back(fi, fj, -w);
-      trip_.emplace_back(fj, fi, -w);
-    }
-  }
-  L_.resize(n, n);
-  L_.setFromTriplets(trip_.begin(), trip_.end());
-  {
-    // The pattern changes with every flip, and one factorization is the common case: no reuse.
-    ScopedTimer tz(R_.profile.analyze);
-    ++R_.profile.analyses;
-    solver_.analyzePattern(L_);
-  }
-  ScopedTimer tf(R_.profile.factor);
-  ++R_.profile.factorizations;
-  solver_.factorize(L_);
-  if (solver_.info() != Eigen::Success)
-    fail(Code::NumericalFailure, Stage::Flatten, "flatten: the cotangent Laplacian could not be factorized");
-  factored_ = true;
-  const auto& Lf = solver_.matrixL().nestedExpression();  // unit lower triangle, column-major
-  lStart_.assign(Lf.outerIndexPtr(), Lf.outerIndexPtr() + n + 1);
-  lRow_.assign(Lf.innerIndexPtr(), Lf.innerIndexPtr() + lStart_[n]);
-  lVal_.resize(lStart_[n]);
-  for (int p = 0; p < lStart_[n]; ++p) {
-    const double x = Lf.valuePtr()[p];
-    if (!(std::fabs(x) < 1e30)) fail(Code::NumericalFailure, Stage::Flatten, "flatten: the Laplacian factor is not finite");
-    lVal_[p] = float(x);
-  }
-  const auto& D = solver_.vectorD();
-  dInv_.resize(n);
-  for (int i = 0; i < n; ++i) dInv_[i] = 1.0 / D[i];
-  const auto& perm = solver_.permutationP().indices();
-  std::vector<int> slotOfFactor(n);
-  for (int i = 0; i < n; ++i) slotOfFactor[i] = perm.size() == n ? perm[i] : i;
-  slot_.assign(T_.nV, -1);
-  for (int v = 0; v < T_.nV; ++v)
-    if (factorIndex_[v] >= 0) slot_[v] = slotOfFactor[factorIndex_[v]];
-  y_.resize(n);
-}
-
-// z = (P L D L' P')^{-1} r, restricted to the current unknowns.
-void Flow::applyPreconditioner(const Eigen::VectorXd& r, Eigen::VectorXd& z) {
-  ++R_.profile.solves;
-  const int n = int(y_.size());
-  std::fill(y_.begin(), y_.end(), 0.0);
-  for (int v = 0; v < T_.nV; ++v)
-    if (free_[v] >= 0) y_[slot_[v]] = r[free_[v]];
-  double* y = y_.data();
-  const int* S = lStart_.data();
-  const int* I = lRow_.data();
-  const float* X = lVal_.data();
-  for (int j = 0; j < n; ++j) {
-    const double yj = y[j];
-    if (yj != 0.0)
-      for (int p = S[j]; p < S[j + 1]; ++p) y[I[p]] -= double(X[p]) * yj;
-  }
-  for (int j = 0; j < n; ++j) y[j] *= dInv_[j];
-  for (int j = n - 1; j >= 0; --j) {
-    double yj = y[j];
-    for (int p = S[j]; p < S[j + 1]; ++p) yj -= double(X[p]) * y[I[p]];
-    y[j] = yj;
-  }
-  z.resize(nFree_);
-  for (int v = 0; v < T_.nV; ++v)
-    if (free_[v] >= 0) z[free_[v]] = y[slot_[v]];
-}
-
-// Preconditioned conjugate gradients (Hestenes–Stiefel 1952) for L x = b from x = 0: every
-// iterate is a descent direction of the convex energy (b . x_k = x_k' L x_k > 0).
-bool Flow::pcg(const Eigen::VectorXd& b, Eigen::VectorXd& x, double tol, int maxIt) {
-  x.setZero(nFree_);
-  Eigen::VectorXd r = b, z, p, q;
-  const double bn = b.norm();
-  if (!(bn > 0)) return true;
-  applyPreconditioner(r, z);
-  p = z;
-  double rz = r.dot(z);
-  for (int k = 0; k < maxIt; ++k) {
-    applyL(p, q);
-    const double pq = p.dot(q);
-    if (!(pq > 0)) return false;
-    const double a = rz / pq;
-    x += a * p;
-    r -= a * q;
-    if (r.norm() <= tol * bn) return true;
-    applyPreconditioner(r, z);
-    const double rz2 = r.dot(z);
-    p = z + (rz2 / rz) * p;
-    rz = rz2;
-  }
-  return false;
-}
-
-// (L - dKbar/du) x = b by GMRES (Saad–Schultz 1986), left-preconditioned with the factor:
-// the exact Newton step when the (circle) targets move with u.
-bool Flow::gmres(const Eigen::VectorXd& b, Eigen::VectorXd& x, double tol, int maxIt) {
-  Eigen::VectorXd r0;
-  applyPreconditioner(b, r0);
-  const double beta = r0.norm();
-  x.setZero(nFree_);
-  if (!(beta > 0)) return true;
-  std::vector<Eigen::VectorXd> V;
-  V.push_back(r0 / beta);
-  Eigen::MatrixXd H = Eigen::MatrixXd::Zero(maxIt + 1, maxIt);
-  std::vector<double> cs(maxIt), sn(maxIt);
-  Eigen::VectorXd g = Eigen::VectorXd::Zero(maxIt + 1), Av, Bv, w;
-  g[0] = beta;
-  int m = 0;
-  bool converged = false;
-  for (int j = 0; j < maxIt; ++j) {
-    applyL(V[j], Av);
-    applyTargetJacobian(V[j], Bv);
-    Av -= Bv;
-    applyPreconditioner(Av, w);
-    for (int i = 0; i <= j; ++i) {
-      H(i, j) = w.dot(V[i]);
-      w -= H(i, j) * V[i];
-    }
-    H(j + 1, j) = w.norm();
-    for (int i = 0; i < j; ++i) {
-      const double t = cs[i] * H(i, j) + sn[i] * H(i + 1, j);
-      H(i + 1, j) = -sn[i] * H(i, j) + cs[i] * H(i + 1, j);
-      H(i, j) = t;
-    }
-    const double r = dmath::hypot(H(j, j), H(j + 1, j));
-    cs[j] = H(j, j) / r;
-    sn[j] = H(j + 1, j) / r;
-    const double hj1 = H(j + 1, j);
-    H(j, j) = r;
-    H(j + 1, j) = 0;
-    g[j + 1] = -sn[j] * g[j];
-    g[j] = cs[j] * g[j];
-    m = j + 1;
-    if (std::fabs(g[j + 1]) <= tol * beta || !(hj1 > 1e-300)) {
-      converged = true;
-      break;
-    }
-    V.push_back(w / hj1);
-  }
-  Eigen::VectorXd y = H.topLeftCorner(m, m).triangularView<Eigen::Upper>().solve(g.head(m));
-  for (int i = 0; i < m; ++i) x += y[i] * V[i];
-  return converged;
-}
-
-// Newton step: L x = b (frozen targets) or (L - dKbar/du) x = b (moving targets), to relative
-// tolerance tol. A stale factor that needs more than kFreshFactorIterations is refreshed.
-bool Flow::solveNewton(const Eigen::VectorXd& b, Eigen::VectorXd& x, bool moving, double tol) {
-  computeWeights();
-  bool fresh = false;
-  if (!factorCovers()) {
-    factor();
-    fresh = true;
-  }
-  for (int attempt = 0; attempt < 2; ++attempt) {
-    const int cap = fresh ? 150 : kFreshFactorIterations;
-    bool ok;
-    {
-      ScopedTimer ts(R_.profile.solve);
-      ok = moving ? gmres(b, x, tol, cap) : pcg(b, x, tol, cap);
-    }
-    if (ok || fresh) return ok;
-    factor();
-    fresh = true;
-  }
-  return false;
-}
-
 FlowResult Flow::run() {
   FlowResult& R = R_;
   setupBoundary();
@@ -745,7 +463,7 @@ FlowResult Flow::run() {
   return std::move(R_);
 }
 
-}  // namespace
+}  // namespace detail
 
 int computeAngles(const IT& T, const std::vector<double>& u, std::vector<double>& angle) {
   angle.resize(size_t(3) * T.nF);
@@ -780,7 +498,7 @@ bool isDelaunay(const IT& T, const std::vector<double>& u) {
 FlowResult runRicciFlow(IT& T, const FlowOptions& options, const ProgressFn& progress) {
   if (!(options.tolerance > 0.0) || options.maxIterations < 1 || options.maxHalvings < 1)
     fail(Code::InvalidArgument, Stage::Flatten, "flatten: tolerance must be > 0 and iteration caps >= 1");
-  Flow flow(T, options, progress);
+  detail::Flow flow(T, options, progress);
   return flow.run();
 }
 
