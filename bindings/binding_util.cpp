@@ -1,5 +1,7 @@
 #include "binding_util.h"
 
+#include "mesh/mesh_attributes.h"
+
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
@@ -24,7 +26,7 @@ val stringArray(const std::vector<std::string>& strings) {
   return out;
 }
 
-MeshBuffers meshFromJs(const val& positions, const val& triangles, const val& uvs) {
+MeshBuffers meshFromJs(const val& positions, const val& triangles, const val& uvs, const val& attributes) {
   MeshBuffers mesh;
   mesh.positions = vectorFromJs<double>(positions);
   mesh.triangles = vectorFromJs<uint32_t>(triangles);
@@ -39,6 +41,16 @@ MeshBuffers meshFromJs(const val& positions, const val& triangles, const val& uv
     fail(Code::InvalidArgument, Stage::Api,
          "uvs has " + std::to_string(mesh.uvs.size()) + " numbers; expected 2 per vertex (" +
              std::to_string(2 * mesh.vertexCount()) + ") or none");
+  if (!attributes.isUndefined() && !attributes.isNull()) {
+    const size_t n = attributes["length"].as<size_t>();
+    for (size_t i = 0; i < n; ++i) {
+      const val a = attributes[i];
+      MeshAttribute m{a["name"].as<std::string>(), a["itemSize"].as<uint32_t>(), a["perCorner"].as<bool>(),
+                      vectorFromJs<double>(a["values"])};
+      mesh.attributes.push_back(std::move(m));
+    }
+    checkAttributes(mesh, Stage::Api);
+  }
   return mesh;
 }
 
@@ -47,6 +59,18 @@ val meshToJs(const MeshBuffers& mesh) {
   out.set("positions", typedArrayCopy(mesh.positions));
   out.set("triangles", typedArrayCopy(mesh.triangles));
   if (!mesh.uvs.empty()) out.set("uvs", typedArrayCopy(mesh.uvs));
+  if (!mesh.attributes.empty()) {
+    val list = val::array();
+    for (const MeshAttribute& a : mesh.attributes) {
+      val o = val::object();
+      o.set("name", a.name);
+      o.set("itemSize", a.components);
+      o.set("perCorner", a.perCorner);
+      o.set("values", typedArrayCopy(a.values));
+      list.call<void>("push", o);
+    }
+    out.set("attributes", list);
+  }
   return out;
 }
 

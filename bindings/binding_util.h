@@ -66,13 +66,16 @@ emscripten::val typedArrayCopy(const std::vector<T>& data) {
 //! JS array of strings.
 emscripten::val stringArray(const std::vector<std::string>& strings);
 
-//! Build MeshBuffers from the three arrays the facade passes (uvs may be empty). Throws
-//! Error(InvalidArgument, Api) when a length is not a multiple of 3 (positions, triangles) or
-//! uvs is neither empty nor 2 per vertex. Index and coordinate validity is left to the library.
+//! Build MeshBuffers from the arrays the facade passes (uvs may be empty; attributes: undefined
+//! or an array of {name, itemSize, perCorner, values: Float64Array}). Throws
+//! Error(InvalidArgument, Api) when a length is not a multiple of 3 (positions, triangles), uvs
+//! is neither empty nor 2 per vertex, or an attribute's shape is wrong (checkAttributes). Index
+//! and coordinate validity is left to the library.
 MeshBuffers meshFromJs(const emscripten::val& positions, const emscripten::val& triangles,
-                       const emscripten::val& uvs);
+                       const emscripten::val& uvs, const emscripten::val& attributes = emscripten::val::undefined());
 
-//! {positions: Float64Array, triangles: Uint32Array, uvs?: Float64Array} (copies).
+//! {positions: Float64Array, triangles: Uint32Array, uvs?: Float64Array, attributes?: [{name,
+//! itemSize, perCorner, values: Float64Array}]} (copies).
 emscripten::val meshToJs(const MeshBuffers& mesh);
 
 //! Option `name` of a JS options object (undefined/null object or field: `fallback`). Throws

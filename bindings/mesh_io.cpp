@@ -24,9 +24,9 @@ MeshFormat formatArg(const std::string& name, Stage stage) {
   return f;
 }
 
-//! readMesh(bytes: Uint8Array, format, fileName, weldTolerance, readUvs)
-//!   -> {ok, value: {positions, triangles, uvs?, format, warnings}}
-val readMeshJs(val bytes, std::string format, std::string fileName, double weldTolerance, bool readUvs) {
+//! readMesh(bytes: Uint8Array, format, fileName, weldTolerance, readUvs, readAttributes)
+//!   -> {ok, value: {positions, triangles, uvs?, attributes?, format, warnings}}
+val readMeshJs(val bytes, std::string format, std::string fileName, double weldTolerance, bool readUvs, bool readAttributes) {
   return bindings::guarded(Stage::Read, [&] {
     ReadOptions options;
     options.format = formatArg(format, Stage::Read);
@@ -35,6 +35,7 @@ val readMeshJs(val bytes, std::string format, std::string fileName, double weldT
       fail(Code::InvalidArgument, Stage::Read, "weldTolerance must be a finite number >= 0");
     options.weldTolerance = weldTolerance;
     options.readUvs = readUvs;
+    options.readAttributes = readAttributes;
     std::vector<uint8_t> data = bindings::vectorFromJs<uint8_t>(bytes);
     ReadResult result = readMesh(data, options);
     data = {};
@@ -45,15 +46,16 @@ val readMeshJs(val bytes, std::string format, std::string fileName, double weldT
   });
 }
 
-//! writeMesh(positions, triangles, uvs, format, writeUvs) -> {ok, value: Uint8Array}
-val writeMeshJs(val positions, val triangles, val uvs, std::string format, bool writeUvs) {
+//! writeMesh(positions, triangles, uvs, attributes, format, writeUvs, writeAttributes) -> {ok, value: Uint8Array}
+val writeMeshJs(val positions, val triangles, val uvs, val attributes, std::string format, bool writeUvs, bool writeAttributes) {
   return bindings::guarded(Stage::Write, [&] {
     MeshFormat f = formatArg(format, Stage::Write);
     if (f == MeshFormat::Auto)
       fail(Code::InvalidArgument, Stage::Write, "writeMesh needs a format (obj, off, stl, stl-ascii, ply, ply-ascii)");
-    MeshBuffers mesh = bindings::meshFromJs(positions, triangles, uvs);
+    MeshBuffers mesh = bindings::meshFromJs(positions, triangles, uvs, attributes);
     WriteOptions options;
     options.writeUvs = writeUvs;
+    options.writeAttributes = writeAttributes;
     return bindings::typedArrayCopy(writeMesh(mesh, f, options));
   });
 }

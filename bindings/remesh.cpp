@@ -52,6 +52,7 @@ val reportToJs(const RemeshReport& r) {
   o.set("sharpEdges", double(r.sharpEdges));
   o.set("cutEdges", double(r.cutEdges));
   o.set("droppedFeatureEdges", double(r.droppedFeatureEdges));
+  o.set("seamEdges", double(r.seamEdges));
   o.set("patches", double(r.patches));
   o.set("curves", double(r.curves));
   o.set("curveSamples", double(r.curveSamples));
@@ -106,11 +107,18 @@ ProgressFn overallProgress(ProgressFn stageProgress) {
   };
 }
 
-//! {mesh, report, patches?, patchOfTriangle?} of a result (patches with returnPatches).
+//! {mesh, report, patches?, patchOfTriangle?, surfacePoints?} of a result (patches with
+//! returnPatches, surfacePoints when the result has them).
 val resultToJs(const RemeshResult& r, bool returnPatches) {
   val out = val::object();
   out.set("mesh", bindings::meshToJs(r.mesh));
   out.set("report", reportToJs(r.report));
+  if (!r.cornerInputFace.empty()) {
+    val points = val::object();
+    points.set("face", bindings::typedArrayCopy(r.cornerInputFace));
+    points.set("barycentric", bindings::typedArrayCopy(r.cornerBarycentric));
+    out.set("surfacePoints", points);
+  }
   if (returnPatches) {
     val patches = val::array();
     for (size_t p = 0; p < r.patches.size(); ++p) {
@@ -136,14 +144,14 @@ val resultToJs(const RemeshResult& r, bool returnPatches) {
   return out;
 }
 
-//! remesh(positions, triangles, vertexSizing, featureEdges, options, progress)
-//!   -> {ok, value: {mesh: {positions, triangles}, report}}
+//! remesh(positions, triangles, uvs, attributes, vertexSizing, featureEdges, options, progress)
+//!   -> {ok, value: {mesh: {positions, triangles, uvs?, attributes?}, report, surfacePoints?}}
 //! A failed RemeshResult (status not Ok) becomes the failure object with its code and stage, and,
 //! when it has a mesh (keepDefectiveOutput), the result as `result`.
-val remeshJs(val positions, val triangles, val vertexSizing, val featureEdges, val options, val progress) {
+val remeshJs(val positions, val triangles, val uvs, val attributes, val vertexSizing, val featureEdges, val options, val progress) {
   val defective = val::undefined();
   val answer = bindings::guarded(Stage::Api, [&] {
-    MeshBuffers mesh = bindings::meshFromJs(positions, triangles, val::undefined());
+    MeshBuffers mesh = bindings::meshFromJs(positions, triangles, uvs, attributes);
     RemeshOptions o;
     const Stage st = Stage::Api;
     o.minAngleDeg = bindings::numberOption(options, "minAngle", o.minAngleDeg, st, 0, 34);
@@ -164,6 +172,8 @@ val remeshJs(val positions, val triangles, val vertexSizing, val featureEdges, v
     o.computeHausdorff = bindings::boolOption(options, "computeHausdorff", o.computeHausdorff, st);
     o.optimize = bindings::boolOption(options, "optimize", o.optimize, st);
     o.returnPatches = bindings::boolOption(options, "patches", o.returnPatches, st);
+    o.carryAttributes = bindings::boolOption(options, "attributes", o.carryAttributes, st);
+    o.returnSurfacePoints = bindings::boolOption(options, "surfacePoints", o.returnSurfacePoints, st);
     o.keepDefectiveOutput = bindings::boolOption(options, "keepDefectiveOutput", o.keepDefectiveOutput, st);
     o.forceTopologyDefect = bindings::boolOption(options, "forceTopologyDefect", o.forceTopologyDefect, st);
     if (!options.isUndefined() && !options.isNull() && !options["boundary"].isUndefined() && !options["boundary"].isNull()) {

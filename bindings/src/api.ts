@@ -14,6 +14,7 @@ import type {
   RemeshOptions,
   RemeshResult,
   Mesh,
+  MeshAttribute,
   MeshBytes,
   MeshFormat,
   MeshInfo,
@@ -110,7 +111,30 @@ export function toMesh(mesh: unknown, stage: StageName = 'api'): Mesh {
     triangles: toIndices(m.triangles, stage),
   };
   if (m.uvs !== undefined && m.uvs !== null) out.uvs = toFloat64('uvs', m.uvs, stage);
+  if (m.attributes !== undefined && m.attributes !== null) out.attributes = toAttributes(m.attributes, stage);
   return out;
+}
+
+const NO_ATTRIBUTES: MeshAttribute[] = [];
+
+/** A mesh's attributes in the shape the glue reads (plain objects; sizes are checked in C++). */
+function toAttributes(x: unknown, stage: StageName): MeshAttribute[] {
+  if (!Array.isArray(x)) throw invalidArgument('attributes must be an array of { name, itemSize, perCorner, values }', stage);
+  return x.map((a: unknown, i) => {
+    const o = a as Partial<MeshAttribute> | null;
+    if (typeof o !== 'object' || o === null || typeof o.name !== 'string' || o.name === '') {
+      throw invalidArgument(`attributes[${i}] needs a name`, stage);
+    }
+    if (typeof o.itemSize !== 'number' || !Number.isInteger(o.itemSize) || o.itemSize < 1 || o.itemSize > 0xffff) {
+      throw invalidArgument(`attributes[${i}].itemSize must be an integer >= 1`, stage);
+    }
+    return {
+      name: o.name,
+      itemSize: o.itemSize,
+      perCorner: o.perCorner === true,
+      values: toFloat64(`attributes[${i}].values`, o.values, stage),
+    };
+  });
 }
 
 const EMPTY_U32 = new Uint32Array(0);
@@ -185,6 +209,8 @@ const remeshKeys: (keyof RemeshOptions)[] = [
   'optimizeIterations',
   'optimizeTolerance',
   'patches',
+  'attributes',
+  'surfacePoints',
   'boundary',
   'computeHausdorff',
   'hausdorffSamples',
@@ -238,7 +264,7 @@ export function bindApi(raw: RawModule): Conformesh {
       if (typeof weld !== 'number') throw invalidArgument('weldTolerance must be a number', 'read');
       const fn = requireExport(raw, 'readMesh');
       const r = callRaw(raw, 'readMesh', 'read', () =>
-        fn(data, String(o.format ?? 'auto'), String(o.fileName ?? ''), weld, o.readUvs !== false),
+        fn(data, String(o.format ?? 'auto'), String(o.fileName ?? ''), weld, o.readUvs !== false, o.readAttributes !== false),
       );
       const out: ReadMeshResult = {
         positions: r.positions,
@@ -247,6 +273,7 @@ export function bindApi(raw: RawModule): Conformesh {
         warnings: r.warnings,
       };
       if (r.uvs) out.uvs = r.uvs;
+      if (r.attributes) out.attributes = r.attributes;
       return out;
     },
 
@@ -255,7 +282,15 @@ export function bindApi(raw: RawModule): Conformesh {
       if (typeof format !== 'string') throw invalidArgument('writeMesh: format must be a format name', 'write');
       const fn = requireExport(raw, 'writeMesh');
       return callRaw(raw, 'writeMesh', 'write', () =>
-        fn(m.positions, m.triangles, m.uvs ?? EMPTY_F64, format, options.writeUvs !== false),
+        fn(
+          m.positions,
+          m.triangles,
+          m.uvs ?? EMPTY_F64,
+          m.attributes ?? NO_ATTRIBUTES,
+          format,
+          options.writeUvs !== false,
+          options.writeAttributes !== false,
+        ),
       );
     },
 
@@ -314,7 +349,9 @@ export function bindApi(raw: RawModule): Conformesh {
       const fn = requireExport(raw, 'remesh');
       const bridge = progressBridge(call);
       try {
-        return callRaw(raw, 'remesh', 'api', () => fn(m.positions, m.triangles, sizing, features, o, bridge.fn));
+        return callRaw(raw, 'remesh', 'api', () =>
+          fn(m.positions, m.triangles, m.uvs ?? EMPTY_F64, m.attributes ?? NO_ATTRIBUTES, sizing, features, o, bridge.fn),
+        );
       } finally {
         bridge.rethrow();
       }

@@ -414,6 +414,13 @@ const commands: Record<string, Command> = {
         default: 1e-3,
       },
       { name: '--no-optimize', value: '', help: 'skip the optimization (vertex moves and flips judged in 3D)' },
+      {
+        name: '--no-attributes',
+        value: '',
+        help:
+          "drop the input's uvs, normals, colours and other vertex data instead of interpolating them onto the output " +
+          '(and keeping their seams as curves)',
+      },
       { name: '--no-hausdorff', value: '', help: 'leave the Hausdorff distance out of the report (it costs time on big meshes)' },
       jsonFlag,
       { name: '--keep-defective', value: '', help: "write the output even when its topology is not the input's (still exit 1)" },
@@ -433,6 +440,7 @@ const commands: Record<string, Command> = {
         chordTolerance: numberFlag(args, '--chord-tol'),
         computeHausdorff: !args.flags.has('--no-hausdorff'),
         optimize: !args.flags.has('--no-optimize'),
+        attributes: !args.flags.has('--no-attributes'),
         keepDefectiveOutput: args.flags.has('--keep-defective'),
         forceTopologyDefect: args.flags.has('--force-topology-defect'),
         optimizeIterations: integerFlag(args, '--optimize-iterations'),
@@ -490,6 +498,7 @@ const commands: Record<string, Command> = {
           num('delaunayFraction', R.delaunayFraction),
           num('featureCurves', R.featureCurves),
           num('featureCurvesKept', R.featureCurvesKept),
+          num('seamEdges', R.seamEdges),
           num('patches', R.patches),
           `"flowIterations":[${R.flowIterations.join(',')}]`,
           num('conformingRounds', R.conformingRounds),
@@ -518,6 +527,7 @@ const commands: Record<string, Command> = {
         row('Hausdorff / bbox diagonal', `${formatG(R.hausdorffRel, 3)} (max vertex distance ${formatG(R.maxDistanceToInputRel, 2)})`);
         row('mean edge length', `${formatG(R.meanEdgeLength, 4)} (target ${formatG(R.targetEdgeLength, 4)})`);
         row('feature curves kept', `${R.featureCurvesKept} / ${R.featureCurves}`);
+        if (R.seamEdges > 0) row('attribute seam edges kept', `${R.seamEdges}`);
         row('patches', `${R.patches} (${R.curves} curves, ${R.curveSamples} samples)`);
         row('topology preserved', R.topologyPreserved ? 'yes' : 'NO');
         for (const w of R.warnings) row('warning', w);

@@ -1,7 +1,7 @@
 // The raw Emscripten module (dist/conformesh.mjs + .wasm) as the facade sees it, and the one
 // place where its results become values or ConformeshErrors. Internal: not part of the public API.
 import { ConformeshError, isErrorCode, isStageName, type StageName } from './status.js';
-import type { FlattenResult, MeshInfo, Pslg, Refine2dResult, RemeshResult, ValidateResult } from './types.js';
+import type { FlattenResult, MeshAttribute, MeshInfo, Pslg, Refine2dResult, RemeshResult, ValidateResult } from './types.js';
 
 /**
  * What every fallible glue function returns (bindings/binding_util.h, `guarded`). A failure may
@@ -15,6 +15,7 @@ export interface RawMesh {
   positions: Float64Array;
   triangles: Uint32Array;
   uvs?: Float64Array;
+  attributes?: MeshAttribute[];
 }
 
 export interface RawStatusRow {
@@ -37,13 +38,16 @@ export interface RawModule {
     fileName: string,
     weldTolerance: number,
     readUvs: boolean,
+    readAttributes: boolean,
   ): RawResult<RawMesh & { format: string; warnings: string[] }>;
   writeMesh?(
     positions: Float64Array,
     triangles: Uint32Array,
     uvs: Float64Array,
+    attributes: MeshAttribute[],
     format: string,
     writeUvs: boolean,
+    writeAttributes: boolean,
   ): RawResult<Uint8Array>;
   meshInfo?(positions: Float64Array, triangles: Uint32Array, options: object): RawResult<MeshInfo>;
   validateMesh?(positions: Float64Array, triangles: Uint32Array, uvs: Float64Array, options: object): RawResult<ValidateResult>;
@@ -65,6 +69,8 @@ export interface RawModule {
   remesh?(
     positions: Float64Array,
     triangles: Uint32Array,
+    uvs: Float64Array,
+    attributes: MeshAttribute[],
     vertexSizing: Float64Array,
     featureEdges: Uint32Array,
     options: object,

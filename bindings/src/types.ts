@@ -2,15 +2,34 @@
 import type { StatusCodeName } from './status.js';
 
 /**
+ * Data attached to a mesh's vertices or triangle corners, as read from a file (OBJ vt / vn, PLY
+ * colours, normals, any scalar vertex property) and carried through remesh.
+ *   name       'uv' (itemSize 2, only per corner: per-vertex uvs are Mesh.uvs), 'normal' (3),
+ *              'color' (3 or 4, in [0, 1]) or a PLY vertex property's own name (1)
+ *   itemSize   values per item
+ *   perCorner  false: one item per vertex (nV·itemSize values); true: one per triangle corner
+ *              (corner c of triangle t is item 3·t + c; 3·nF·itemSize values): a vertex on a seam
+ *              has one value per side. `conformesh/three` splits such vertices for three.js.
+ */
+export interface MeshAttribute {
+  name: string;
+  itemSize: number;
+  perCorner: boolean;
+  values: Float64Array;
+}
+
+/**
  * A triangle mesh as flat arrays (GL style; maps one-to-one onto three.js BufferAttributes).
- *   positions  3·nV numbers, x y z per vertex
- *   triangles  3·nF vertex indices (0-based), counter-clockwise seen from outside
- *   uvs        optional, 2·nV numbers (per-vertex planar coordinates)
+ *   positions   3·nV numbers, x y z per vertex
+ *   triangles   3·nF vertex indices (0-based), counter-clockwise seen from outside
+ *   uvs         optional, 2·nV numbers (per-vertex planar coordinates)
+ *   attributes  optional, other data per vertex or per corner (MeshAttribute)
  */
 export interface Mesh {
   positions: Float64Array;
   triangles: Uint32Array;
   uvs?: Float64Array;
+  attributes?: MeshAttribute[];
 }
 
 /**
@@ -21,6 +40,7 @@ export interface MeshLike {
   positions: ArrayLike<number>;
   triangles: ArrayLike<number>;
   uvs?: ArrayLike<number> | undefined;
+  attributes?: { name: string; itemSize: number; perCorner?: boolean; values: ArrayLike<number> }[] | undefined;
 }
 
 /** File formats: `stl` and `ply` are the binary (little-endian) variants. */
@@ -36,8 +56,10 @@ export interface ReadMeshOptions {
   fileName?: string;
   /** Also weld vertices closer than this (absolute units); default 0 (exact duplicates in STL only). */
   weldTolerance?: number;
-  /** Keep OBJ `vt` as `uvs` when every used vertex has exactly one; default true. */
+  /** Keep OBJ `vt` as `uvs` when every used vertex has one value, else (uv seams) as the per-corner attribute 'uv'; default true. */
   readUvs?: boolean;
+  /** OBJ `vn` as 'normal'; PLY colours as 'color' (in [0, 1]), nx/ny/nz as 'normal', every other scalar vertex property by its name; default true. */
+  readAttributes?: boolean;
 }
 
 export interface ReadMeshResult extends Mesh {
@@ -48,8 +70,10 @@ export interface ReadMeshResult extends Mesh {
 }
 
 export interface WriteMeshOptions {
-  /** OBJ: write `vt` when the mesh has uvs; default true. */
+  /** OBJ: write `vt` when the mesh has uvs or a per-corner 'uv' attribute; PLY: u v, or the face list `texcoord`. Default true. */
   writeUvs?: boolean;
+  /** OBJ: 'normal' as `vn`; PLY: every attribute as properties ('color' as uchar red green blue [alpha]). Default true. */
+  writeAttributes?: boolean;
 }
 
 /** A non-fatal finding: the status it stands for (or 'Ok' for a note), how many elements, a message. */
@@ -305,6 +329,16 @@ export interface RemeshOptions {
   boundary?: 'free' | 'corners' | 'circle';
   /** Return every patch in the plane (RemeshResult.patches, patchOfTriangle), e.g. to draw the flattened domain. Default false. */
   patches?: boolean;
+  /**
+   * Carry the input's uvs and attributes to the output (default true): edges where a per-corner
+   * attribute jumps (uv seams) are kept as feature curves, so no triangle straddles one and texture
+   * charts stay whole, and every output corner gets the input's values interpolated at its point on
+   * the input (RemeshResult.surfacePoints), on its triangle's side of a seam. Per-vertex attributes
+   * stay per vertex, per-corner ones per corner; normals are renormalized.
+   */
+  attributes?: boolean;
+  /** Return RemeshResult.surfacePoints even for an input without attributes. Default false. */
+  surfacePoints?: boolean;
   /** Optimization passes (hard cap, default 2; each pass costs about as much as the lift). */
   optimizeIterations?: number;
   /** Stop when a pass gains less than this fraction of the mean min angle (default 1e-3). */
@@ -376,6 +410,8 @@ export interface RemeshReport {
   cutEdges: number;
   /** Sharp edges (above featureAngle) found not to be creases (see minFeatureLength). */
   droppedFeatureEdges: number;
+  /** Input edges kept as feature curves for being attribute seams (the `attributes` option). */
+  seamEdges: number;
   patches: number;
   curves: number;
   curveSamples: number;
@@ -423,4 +459,11 @@ export interface RemeshResult {
   patches?: RemeshPatch[];
   /** With the `patches` option: the patch of every output triangle. */
   patchOfTriangle?: Uint32Array;
+  /**
+   * With attributes carried or the `surfacePoints` option: every output corner's point on the
+   * input (corner c of triangle t is 3·t + c): `face` the input triangle its vertex lies on (on the
+   * triangle's side of a seam), `barycentric` 3 coordinates per corner w.r.t. that triangle's
+   * corners (they sum to 1 and weight its vertices to the output vertex, up to rounding).
+   */
+  surfacePoints?: { face: Uint32Array; barycentric: Float64Array };
 }

@@ -64,6 +64,7 @@ int runFlatten(const std::vector<std::string>& argv) {
     FlatPatch P = flatten(rr.mesh, o);
     MeshBuffers m = rr.mesh;
     m.uvs = P.uv;
+    m.attributes.clear();  // the file written holds the flattening's uvs only
     writeFileBytes(out, writeMesh(m, MeshFormat::Obj));
     const FlattenReport& R = P.report;
     if (json) {

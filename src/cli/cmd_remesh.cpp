@@ -43,6 +43,7 @@ std::string reportJson(const RemeshReport& r) {
   num("delaunayFraction", r.delaunayFraction);
   num("featureCurves", double(r.featureCurves));
   num("featureCurvesKept", double(r.featureCurvesKept));
+  num("seamEdges", double(r.seamEdges));
   num("patches", double(r.patches));
   s += "\"flowIterations\":[";
   for (size_t i = 0; i < r.flowIterations.size(); ++i) s += (i ? "," : "") + std::to_string(r.flowIterations[i]);
@@ -78,6 +79,7 @@ void printTable(const RemeshReport& r) {
               r.maxDistanceToInputRel);
   std::printf("%-28s %.4g (target %.4g)\n", "mean edge length", r.meanEdgeLength, r.targetEdgeLength);
   std::printf("%-28s %zu / %zu\n", "feature curves kept", r.featureCurvesKept, r.featureCurves);
+  if (r.seamEdges > 0) std::printf("%-28s %zu\n", "attribute seam edges kept", r.seamEdges);
   std::printf("%-28s %zu (%zu curves, %zu samples)\n", "patches", r.patches, r.curves, r.curveSamples);
   std::printf("%-28s %s\n", "topology preserved", r.topologyPreserved ? "yes" : "NO");
   for (const auto& w : r.warnings) std::printf("%-28s %s\n", "warning", w.c_str());
@@ -124,6 +126,10 @@ std::vector<Flag> flags() {
       {"--optimize-tolerance", "T", "stop optimizing when a pass gains less than this fraction of the mean min angle",
        num(d.optimizeTolerance)},
       {"--no-optimize", "", "skip the optimization (vertex moves and flips judged in 3D)", ""},
+      {"--no-attributes", "",
+       "drop the input's uvs, normals, colours and other vertex data instead of interpolating them onto the "
+       "output (and keeping their seams as curves)",
+       ""},
       {"--no-hausdorff", "", "leave the Hausdorff distance out of the report (it costs time on big meshes)", ""},
       {"--json", "", "print the report, or the error, as one JSON object on stdout", ""},
       {"--keep-defective", "", "write the output even when its topology is not the input's (still exit 1)", ""},
@@ -149,6 +155,7 @@ int run(const std::vector<std::string>& argv) {
     opt.chordTolerance = args.number("--chord-tol", opt.chordTolerance);
     opt.computeHausdorff = !args.has("--no-hausdorff");
     opt.optimize = !args.has("--no-optimize");
+    opt.carryAttributes = !args.has("--no-attributes");
     opt.keepDefectiveOutput = args.has("--keep-defective");
     opt.forceTopologyDefect = args.has("--force-topology-defect");
     // a count out of range is passed on for remesh to reject; a fractional one is rejected here

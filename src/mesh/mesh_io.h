@@ -58,8 +58,16 @@ struct ReadOptions {
   //! distance (grid hashing, deterministic). 0: no tolerance weld.
   double weldTolerance = 0.0;
   //! OBJ `vt` / PLY u,v (or s,t / texture_u,texture_v) vertex properties into mesh.uvs. OBJ uvs
-  //! are kept only when every vertex used by a face has exactly one vt (else dropped, warning).
+  //! go to mesh.uvs when every vertex used by a face has one vt value; with uv seams (a vertex
+  //! with several) they are the per-corner attribute "uv" instead. Dropped (warning) when some
+  //! face corner has no vt.
   bool readUvs = true;
+  //! Other vertex data into mesh.attributes (MeshAttribute): OBJ `vn` as "normal" (per vertex
+  //! when every vertex has one value, else per corner); PLY red/green/blue[/alpha] (or
+  //! diffuse_red, ...) as "color" scaled to [0, 1] from integer types (uchar / 255, ushort /
+  //! 65535), nx/ny/nz as "normal", and every other scalar vertex property as a 1-component
+  //! attribute of its own name.
+  bool readAttributes = true;
 };
 
 struct ReadResult {
@@ -77,9 +85,18 @@ inline ReadResult readMesh(const std::vector<uint8_t>& bytes, const ReadOptions&
 }
 
 struct WriteOptions {
-  //! OBJ: write `vt` and `f a/a b/b c/c` when mesh.uvs is non-empty. PLY: write u, v vertex
-  //! properties (double). Ignored by OFF and STL.
+  //! OBJ: write `vt` and `f a/a b/b c/c` when mesh.uvs is non-empty, or one `vt` per distinct
+  //! value of a per-corner attribute "uv" (`f a/i b/j c/k`). PLY: write u, v vertex properties
+  //! (double), or a per-corner "uv" as the face list property `texcoord` (6 doubles, MeshLab's).
+  //! Ignored by OFF and STL.
   bool writeUvs = true;
+  //! mesh.attributes: OBJ writes "normal" as `vn` (per vertex: `vn` i is vertex i's; per corner:
+  //! one per distinct value) and drops the others; PLY writes every per-vertex attribute as
+  //! vertex properties ("normal" as double nx ny nz, "color" as uchar red green blue [alpha],
+  //! 255 · value rounded, others as double by name, name_0, name_1, ... for several components)
+  //! and every per-corner one as a face list property of 3 · components doubles by its name (the
+  //! PLY reader reads back only `texcoord`). Ignored by OFF and STL.
+  bool writeAttributes = true;
 };
 
 //! Write a mesh. Supported: Obj, Off, StlAscii, StlBinary, PlyBinaryLE, PlyBinaryBE, PlyAscii.

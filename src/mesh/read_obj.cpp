@@ -1,5 +1,6 @@
-// conformesh — Wavefront OBJ reader: v, vt, f (a, a/b, a/b/c, a//c; negative = relative indices);
-// polygons fan-triangulated; other statements (vn, o, g, s, usemtl, mtllib, l, p, ...) ignored.
+// conformesh — Wavefront OBJ reader: v, vt, vn, f (a, a/b, a/b/c, a//c; negative = relative
+// indices); polygons fan-triangulated; other statements (o, g, s, usemtl, mtllib, l, p, ...) ignored.
+#include <algorithm>
 #include <cmath>
 #include <string>
 #include <vector>
@@ -23,6 +24,37 @@ int64_t resolve(int64_t idx, size_t count) {
   return -1;
 }
 
+// Per-corner indices into a list of `k`-component values (vt or vn) as mesh data: per vertex
+// when the corners of every vertex agree on the value (0 for vertices no face uses), else per
+// corner. Empty values when some corner has no index.
+struct CornerData {
+  bool perCorner = false;
+  std::vector<double> values;
+};
+CornerData cornerValues(const std::vector<double>& list, int k, const std::vector<int64_t>& cornerIndex,
+                        const std::vector<uint32_t>& triangles, size_t nv) {
+  CornerData out;
+  std::vector<int64_t> first(nv, -1);
+  for (size_t c = 0; c < cornerIndex.size(); ++c) {
+    const int64_t i = cornerIndex[c];
+    if (i < 0) return out;
+    int64_t& f = first[triangles[c]];
+    if (f < 0) f = i;
+    else if (f != i && !out.perCorner)
+      out.perCorner = !std::equal(&list[size_t(k * f)], &list[size_t(k * f)] + k, &list[size_t(k * i)]);
+  }
+  if (!out.perCorner) {
+    out.values.assign(size_t(k) * nv, 0.0);
+    for (size_t v = 0; v < nv; ++v)
+      if (first[v] >= 0) std::copy_n(&list[size_t(k * first[v])], k, &out.values[size_t(k) * v]);
+    return out;
+  }
+  out.values.resize(size_t(k) * cornerIndex.size());
+  for (size_t c = 0; c < cornerIndex.size(); ++c)
+    std::copy_n(&list[size_t(k * cornerIndex[c])], k, &out.values[size_t(k) * c]);
+  return out;
+}
+
 }  // namespace
 
 void readObj(const Source& src, const ReadOptions& opt, ReadResult& result) {
@@ -32,16 +64,20 @@ void readObj(const Source& src, const ReadOptions& opt, ReadResult& result) {
   std::vector<int64_t> cornerUv;       // per triangle corner: vt index or -1
   bool anyCornerUv = false;
   bool trackUvs = opt.readUvs;
-  std::vector<int64_t> polyV, polyT;  // current face's corners
-  int64_t maxV = -1, maxT = -1;        // largest positive index used, checked at the end
+  std::vector<double> normalList;      // vn x y z, 3 per entry
+  std::vector<int64_t> cornerNormal;   // per triangle corner: vn index or -1
+  bool anyCornerNormal = false;
+  bool trackNormals = opt.readAttributes;
+  std::vector<int64_t> polyV, polyT, polyN;  // current face's corners
+  int64_t maxV = -1, maxT = -1, maxN = -1;   // largest positive index used, checked at the end
   size_t maxVLine = 0, maxTLine = 0;
 
   const char* p = reinterpret_cast<const char*>(src.data);
   const char* const end = p + src.size;
   {
     // Pre-count "v" and "f" lines to reserve (growth copies cost more than this pass), and see
-    // whether any "vt" exists (else corner uvs are not tracked).
-    size_t nv = 0, nf = 0, nvt = 0;
+    // whether any "vt" / "vn" exists (else corner uvs / normals are not tracked).
+    size_t nv = 0, nf = 0, nvt = 0, nvn = 0;
     for (const char* q = p; q < end;) {
       while (q < end && (*q == ' ' || *q == '\t')) ++q;
       if (end - q > 1 && (q[1] == ' ' || q[1] == '\t')) {
@@ -49,6 +85,8 @@ void readObj(const Source& src, const ReadOptions& opt, ReadResult& result) {
         nf += q[0] == 'f';
       } else if (end - q > 2 && q[0] == 'v' && q[1] == 't') {
         ++nvt;
+      } else if (end - q > 2 && q[0] == 'v' && q[1] == 'n') {
+        ++nvn;
       }
       const void* nl = std::memchr(q, '\n', size_t(end - q));
       q = nl ? static_cast<const char*>(nl) + 1 : end;
@@ -57,6 +95,8 @@ void readObj(const Source& src, const ReadOptions& opt, ReadResult& result) {
     mesh.triangles.reserve(3 * nf);
     if (nvt == 0) trackUvs = false;
     else cornerUv.reserve(3 * nf);
+    if (nvn == 0) trackNormals = false;
+    else if (trackNormals) cornerNormal.reserve(3 * nf);
   }
   size_t line = 0;
   const char *b, *e;
@@ -68,14 +108,19 @@ void readObj(const Source& src, const ReadOptions& opt, ReadResult& result) {
     p = nl ? nl + 1 : end;
     if (!sc.next(b, e)) continue;
 
+    // three finite numbers of a v (or, `normal`, a vn) line
+    auto read3 = [&](double* xyz, bool normal) {
+      for (int k = 0; k < 3; ++k) {
+        if (!sc.next(b, e)) src.failLine(Code::ParseError, line, normal ? "normal needs 3 coordinates" : "vertex needs 3 coordinates");
+        if (!parseDouble(b, e, xyz[k]))
+          src.failLine(Code::ParseError, line, (normal ? "bad normal coordinate '" : "bad coordinate '") + std::string(b, e) + "'");
+        if (!std::isfinite(xyz[k]))
+          src.failLine(Code::NonFiniteCoordinate, line, normal ? "non-finite normal coordinate" : "non-finite coordinate");
+      }
+    };
     if (tokenIs(b, e, "v")) {
       double xyz[3];
-      for (double& c : xyz) {
-        if (!sc.next(b, e)) src.failLine(Code::ParseError, line, "vertex needs 3 coordinates");
-        if (!parseDouble(b, e, c))
-          src.failLine(Code::ParseError, line, "bad coordinate '" + std::string(b, e) + "'");
-        if (!std::isfinite(c)) src.failLine(Code::NonFiniteCoordinate, line, "non-finite coordinate");
-      }
+      read3(xyz, false);
       if (mesh.positions.size() / 3 >= kMaxVertices) src.failLine(Code::TooLarge, line, "too many vertices");
       mesh.positions.insert(mesh.positions.end(), xyz, xyz + 3);
     } else if (tokenIs(b, e, "vt")) {  // kept even when !readUvs: relative vt indices count them
@@ -90,10 +135,15 @@ void readObj(const Source& src, const ReadOptions& opt, ReadResult& result) {
         if (!std::isfinite(uv[k])) src.failLine(Code::NonFiniteCoordinate, line, "non-finite texture coordinate");
       }
       uvList.insert(uvList.end(), uv, uv + 2);
+    } else if (tokenIs(b, e, "vn")) {  // kept even when not tracked: relative vn indices count them
+      double n[3];
+      read3(n, true);
+      normalList.insert(normalList.end(), n, n + 3);
     } else if (tokenIs(b, e, "f") || tokenIs(b, e, "fo")) {
       polyV.clear();
       polyT.clear();
-      const size_t nv = mesh.positions.size() / 3, nt = uvList.size() / 2;
+      polyN.clear();
+      const size_t nv = mesh.positions.size() / 3, nt = uvList.size() / 2, nn = normalList.size() / 3;
       while (sc.next(b, e)) {
         const char* s1 = static_cast<const char*>(std::memchr(b, '/', size_t(e - b)));
         const char* ve = s1 ? s1 : e;
@@ -106,7 +156,7 @@ void readObj(const Source& src, const ReadOptions& opt, ReadResult& result) {
           maxVLine = line;
         }
         polyV.push_back(v);
-        int64_t t = -1;
+        int64_t t = -1, n = -1;
         if (s1) {
           const char* tb = s1 + 1;
           const char* s2 = static_cast<const char*>(std::memchr(tb, '/', size_t(e - tb)));
@@ -122,9 +172,15 @@ void readObj(const Source& src, const ReadOptions& opt, ReadResult& result) {
               maxTLine = line;
             }
           }
-          // The normal index (after the second '/') is not used.
+          // the normal index, when normals are read: a bad one leaves the corner without (the
+          // normals are then dropped with a warning, as before they were read at all)
+          if (trackNormals && s2 && s2 + 1 < e && parseInt(s2 + 1, e, idx)) {
+            n = resolve(idx, nn);
+            maxN = std::max(maxN, n);
+          }
         }
         polyT.push_back(t);
+        polyN.push_back(n);
       }
       if (polyV.size() < 3)
         src.failLine(Code::ParseError, line, "face with " + std::to_string(polyV.size()) + " < 3 vertices");
@@ -135,6 +191,10 @@ void readObj(const Source& src, const ReadOptions& opt, ReadResult& result) {
           if (trackUvs) {
             cornerUv.push_back(polyT[k]);
             anyCornerUv |= polyT[k] >= 0;
+          }
+          if (trackNormals) {
+            cornerNormal.push_back(polyN[k]);
+            anyCornerNormal |= polyN[k] >= 0;
           }
         }
       }
@@ -150,32 +210,21 @@ void readObj(const Source& src, const ReadOptions& opt, ReadResult& result) {
     src.failLine(Code::IndexOutOfRange, maxTLine,
                  "texture index " + std::to_string(maxT + 1) + " > vt count " + std::to_string(uvList.size() / 2));
 
-  // Per-vertex uvs when each used vertex has exactly one vt.
+  if (maxN >= int64_t(normalList.size() / 3))
+    for (int64_t& n : cornerNormal) n = n < int64_t(normalList.size() / 3) ? n : -1;
+
+  // uvs per vertex when each used vertex has one vt value, else per corner (uv seams); normals
+  // the same way, as the attribute "normal".
   if (trackUvs && anyCornerUv) {
-    std::vector<int64_t> vt(nv, -1);
-    bool ok = true;
-    for (size_t c = 0; c < cornerUv.size() && ok; ++c) {
-      const uint32_t v = mesh.triangles[c];
-      const int64_t t = cornerUv[c];
-      if (t < 0) {
-        ok = false;
-      } else if (vt[v] < 0) {
-        vt[v] = t;
-      } else if (vt[v] != t && (uvList[2 * vt[v]] != uvList[2 * t] || uvList[2 * vt[v] + 1] != uvList[2 * t + 1])) {
-        ok = false;
-      }
-    }
-    if (ok) {
-      mesh.uvs.assign(2 * nv, 0.0);
-      for (size_t v = 0; v < nv; ++v)
-        if (vt[v] >= 0) {
-          mesh.uvs[2 * v] = uvList[2 * vt[v]];
-          mesh.uvs[2 * v + 1] = uvList[2 * vt[v] + 1];
-        }
-    } else {
-      result.warnings.push_back(
-          "uvs dropped: some vertex has no vt or several different vt (a uv seam); positions are shared");
-    }
+    CornerData d = cornerValues(uvList, 2, cornerUv, mesh.triangles, nv);
+    if (d.values.empty()) result.warnings.push_back("uvs dropped: some face corners have no vt");
+    else if (!d.perCorner) mesh.uvs = std::move(d.values);
+    else mesh.attributes.push_back(MeshAttribute{"uv", 2, true, std::move(d.values)});
+  }
+  if (trackNormals && anyCornerNormal) {
+    CornerData d = cornerValues(normalList, 3, cornerNormal, mesh.triangles, nv);
+    if (d.values.empty()) result.warnings.push_back("normals dropped: some face corners have no vn");
+    else mesh.attributes.push_back(MeshAttribute{"normal", 3, d.perCorner, std::move(d.values)});
   }
 }
 

@@ -2,8 +2,10 @@
 // Vertex positions from the "vertex" element's x, y, z properties (any scalar type, anywhere
 // among other properties); faces from the "face" element's list property "vertex_indices" or
 // "vertex_index" (any integer count and item types); optional uvs from u/v, s/t or
-// texture_u/texture_v. Other elements and properties are skipped; comment and obj_info lines are
-// ignored.
+// texture_u/texture_v; with ReadOptions::readAttributes the vertex element's other scalar
+// properties as mesh.attributes (colours, normals, any other value: mesh_io.h). Other elements and
+// list properties are skipped; comment and obj_info lines are ignored.
+#include <algorithm>
 #include <cmath>
 #include <string>
 #include <vector>
@@ -45,7 +47,7 @@ size_t typeSize(PType t) {
 
 bool isIntegerType(PType t) { return t != PType::Float32 && t != PType::Float64; }
 
-enum Role { kNone = -1, kX = 0, kY = 1, kZ = 2, kU = 3, kV = 4, kFace = 5 };
+enum Role { kNone = -1, kX = 0, kY = 1, kZ = 2, kU = 3, kV = 4, kFace = 5, kAttribute = 6, kTexcoord = 7 };
 
 struct Property {
   std::string name;
@@ -53,6 +55,9 @@ struct Property {
   bool list = false;
   PType countType = PType::Invalid;
   int role = kNone;
+  // kAttribute: the value goes to component `component` of mesh.attributes[attribute], times scale
+  uint32_t attribute = 0, component = 0;
+  double scale = 1.0;
 };
 
 struct Element {
@@ -98,14 +103,75 @@ std::vector<std::string> splitWords(const char* b, const char* e) {
   return w;
 }
 
+// The vertex element's properties that are not positions or uvs, as attributes of `mesh`
+// (mesh_io.h, ReadOptions::readAttributes): colours and normals grouped when all their
+// components are there, every other scalar its own 1-component attribute.
+void assignAttributes(std::vector<Property>& props, MeshBuffers& mesh, uint64_t nv, bool readUvs) {
+  auto isUvName = [](const std::string& n) {
+    return n == "u" || n == "v" || n == "s" || n == "t" || n.rfind("texture_", 0) == 0;
+  };
+  auto find = [&](const std::string& n) -> Property* {
+    for (Property& pr : props)
+      if (!pr.list && pr.role == kNone && pr.name == n) return &pr;
+    return nullptr;
+  };
+  auto group = [&](const char* name, std::vector<std::string> names, size_t required, bool colour) {
+    std::vector<Property*> found;
+    for (const std::string& n : names) {
+      Property* pr = find(n);
+      if (!pr) break;
+      found.push_back(pr);
+    }
+    if (found.size() < required) return;
+    for (uint32_t c = 0; c < found.size(); ++c) {
+      Property& pr = *found[c];
+      pr.role = kAttribute;
+      pr.attribute = uint32_t(mesh.attributes.size());
+      pr.component = c;
+      if (colour) pr.scale = pr.type == PType::UInt8 ? 1.0 / 255 : pr.type == PType::UInt16 ? 1.0 / 65535 : 1.0;
+    }
+    mesh.attributes.push_back(MeshAttribute{name, uint32_t(found.size()), false, {}});
+  };
+  group("color", {"red", "green", "blue", "alpha"}, 3, true);
+  group("color", {"diffuse_red", "diffuse_green", "diffuse_blue", "diffuse_alpha"}, 3, true);
+  group("normal", {"nx", "ny", "nz"}, 3, false);
+  for (Property& pr : props)
+    if (!pr.list && pr.role == kNone && (readUvs || !isUvName(pr.name))) {
+      pr.role = kAttribute;
+      pr.attribute = uint32_t(mesh.attributes.size());
+      mesh.attributes.push_back(MeshAttribute{pr.name, 1, false, {}});
+    }
+  for (MeshAttribute& a : mesh.attributes) a.values.assign(size_t(nv) * a.components, 0.0);
+}
+
+// Store vertex i's value v of a property with a role (position, uv or attribute).
+void storeVertexValue(const Property& pr, uint64_t i, double v, MeshBuffers& mesh, bool uvs) {
+  if (pr.role <= kZ) mesh.positions[3 * size_t(i) + pr.role] = v;
+  else if (pr.role == kAttribute) {
+    MeshAttribute& a = mesh.attributes[pr.attribute];
+    a.values[size_t(i) * a.components + pr.component] = v * pr.scale;
+  } else if (uvs) mesh.uvs[2 * size_t(i) + (pr.role - kU)] = v;
+}
+
 struct FaceSink {
-  const Source& src;
+  FaceSink(MeshBuffers& m, uint64_t n) : mesh(m), nv(n) {}
   MeshBuffers& mesh;
   uint64_t nv;
   // Adds polygon corners one by one, fan-triangulating.
   int64_t first = 0, prev = 0;
   size_t corner = 0;
+  // the face's texcoord list (u v per polygon corner), and the uv of every triangle corner so far
+  std::vector<double> polyUv, cornerUv;
+  bool uvsComplete = true;
   void begin() { corner = 0; }
+  //! After every face: its texcoord values to its triangles' corners (fan 0, i, i + 1).
+  void endFace() {
+    if (polyUv.size() != 2 * corner) uvsComplete = false;
+    else
+      for (size_t i = 1; i + 1 < corner; ++i)
+        for (size_t c : {size_t(0), i, i + 1}) cornerUv.insert(cornerUv.end(), {polyUv[2 * c], polyUv[2 * c + 1]});
+    polyUv.clear();
+  }
   bool add(int64_t idx) {  // false: out of range
     if (idx < 0 || uint64_t(idx) >= nv) return false;
     if (corner == 0) {
@@ -191,9 +257,9 @@ void readPly(const Source& src, const ReadOptions& opt, ReadResult& result) {
   const bool bigEndian = encoding == kBE;
 
   // Roles, and the element counts checked against the bytes before anything is allocated.
-  const Element* vertexEl = nullptr;
+  Element* vertexEl = nullptr;
   const Element* faceEl = nullptr;
-  bool hasU = false, hasV = false;
+  bool hasU = false, hasV = false, texcoords = false;
   uint64_t remaining = uint64_t(end - p);
   for (Element& el : elements) {
     uint64_t minBytes = 0;
@@ -224,6 +290,12 @@ void readPly(const Source& src, const ReadOptions& opt, ReadResult& result) {
           pr.role = kFace;
           break;
         }
+      // per-corner texture coordinates (MeshLab's texcoord list) when there are no per-vertex ones
+      for (Property& pr : el.props)
+        if (pr.list && pr.name == "texcoord" && !isIntegerType(pr.type) && opt.readUvs && !(hasU && hasV)) {
+          pr.role = kTexcoord;
+          texcoords = true;
+        }
     }
   }
   if (!vertexEl) src.failPlain(Code::EmptyMesh, "PLY has no 'vertex' element");
@@ -242,7 +314,8 @@ void readPly(const Source& src, const ReadOptions& opt, ReadResult& result) {
   mesh.positions.assign(size_t(nv) * 3, 0.0);
   const bool uvs = hasU && hasV;
   if (uvs) mesh.uvs.assign(size_t(nv) * 2, 0.0);
-  FaceSink sink{src, mesh, nv};
+  if (opt.readAttributes) assignAttributes(vertexEl->props, mesh, nv, opt.readUvs);
+  FaceSink sink(mesh, nv);
 
   if (binary) {
     const uint8_t* q = reinterpret_cast<const uint8_t*>(p);
@@ -261,10 +334,9 @@ void readPly(const Source& src, const ReadOptions& opt, ReadResult& result) {
             need(sz, el.name.c_str());
             if (isVertex && pr.role != kNone) {
               double v = loadScalar(q, pr.type, bigEndian);
-              if (!std::isfinite(v))
+              if (!std::isfinite(v) && pr.role != kAttribute)
                 src.failOffset(Code::NonFiniteCoordinate, uint64_t(q - src.data), "non-finite vertex value");
-              if (pr.role <= kZ) mesh.positions[3 * size_t(i) + pr.role] = v;
-              else if (uvs) mesh.uvs[2 * size_t(i) + (pr.role - kU)] = v;
+              storeVertexValue(pr, i, v, mesh, uvs);
             }
             q += sz;
             continue;
@@ -286,10 +358,13 @@ void readPly(const Source& src, const ReadOptions& opt, ReadResult& result) {
                 src.failOffset(Code::IndexOutOfRange, uint64_t(q - src.data),
                                "vertex index " + std::to_string(int64_t(idx)) + " not in [0, " + std::to_string(nv) + ")");
             }
+          } else if (isFace && pr.role == kTexcoord) {
+            for (uint64_t j = 0; j < n; ++j, q += isz) sink.polyUv.push_back(loadScalar(q, pr.type, bigEndian));
           } else {
             q += n * isz;
           }
         }
+        if (isFace && texcoords) sink.endFace();
       }
     }
     if (q != qend)
@@ -312,9 +387,9 @@ void readPly(const Source& src, const ReadOptions& opt, ReadResult& result) {
               double v;
               if (!parseDouble(b, e, v))
                 src.failLine(Code::ParseError, sc.tokenLine(), "bad number '" + std::string(b, e) + "'");
-              if (!std::isfinite(v)) src.failLine(Code::NonFiniteCoordinate, sc.tokenLine(), "non-finite vertex value");
-              if (pr.role <= kZ) mesh.positions[3 * size_t(i) + pr.role] = v;
-              else if (uvs) mesh.uvs[2 * size_t(i) + (pr.role - kU)] = v;
+              if (!std::isfinite(v) && pr.role != kAttribute)
+                src.failLine(Code::NonFiniteCoordinate, sc.tokenLine(), "non-finite vertex value");
+              storeVertexValue(pr, i, v, mesh, uvs);
             }
             continue;
           }
@@ -332,6 +407,12 @@ void readPly(const Source& src, const ReadOptions& opt, ReadResult& result) {
           }
           for (int64_t j = 0; j < n; ++j) {
             nextToken(el.name.c_str());
+            if (isFace && pr.role == kTexcoord) {
+              double v;
+              if (!parseDouble(b, e, v))
+                src.failLine(Code::ParseError, sc.tokenLine(), "bad number '" + std::string(b, e) + "'");
+              sink.polyUv.push_back(v);
+            }
             if (!face) continue;
             int64_t idx;
             if (!parseInt(b, e, idx))
@@ -341,8 +422,23 @@ void readPly(const Source& src, const ReadOptions& opt, ReadResult& result) {
                            "vertex index " + std::to_string(idx) + " not in [0, " + std::to_string(nv) + ")");
           }
         }
+        if (isFace && texcoords) sink.endFace();
       }
     }
+  }
+  if (texcoords && sink.uvsComplete && sink.cornerUv.size() == 2 * mesh.triangles.size())
+    mesh.attributes.push_back(MeshAttribute{"uv", 2, true, std::move(sink.cornerUv)});
+  else if (texcoords)
+    result.warnings.push_back("texcoord dropped: a face's list does not hold 2 values per corner");
+  // an attribute with a NaN or infinite value is dropped (positions and uvs fail above)
+  auto& attrs = mesh.attributes;
+  for (size_t k = 0; k < attrs.size();) {
+    if (std::all_of(attrs[k].values.begin(), attrs[k].values.end(), [](double v) { return std::isfinite(v); })) {
+      ++k;
+      continue;
+    }
+    result.warnings.push_back("vertex property '" + attrs[k].name + "' dropped: a value is not finite");
+    attrs.erase(attrs.begin() + ptrdiff_t(k));
   }
 }
 

@@ -2,6 +2,7 @@
 // (uniform grid with the 27 neighbour cells).
 #include "mesh/weld_vertices.h"
 
+#include <algorithm>
 #include <cmath>
 #include <cstring>
 #include <functional>
@@ -267,10 +268,14 @@ size_t weldVertices(MeshBuffers& mesh, double tolerance, Stage stage) {
     for (int k = 0; k < 3; ++k) mesh.positions[3 * kept + k] = mesh.positions[3 * v + k];
     if (hasUvs)
       for (int k = 0; k < 2; ++k) mesh.uvs[2 * kept + k] = mesh.uvs[2 * v + k];
+    for (MeshAttribute& a : mesh.attributes)
+      if (!a.perCorner) std::copy_n(&a.values[a.components * v], a.components, &a.values[a.components * kept]);
     ++kept;
   }
   mesh.positions.resize(3 * kept);
   if (hasUvs) mesh.uvs.resize(2 * kept);
+  for (MeshAttribute& a : mesh.attributes)
+    if (!a.perCorner) a.values.resize(a.components * kept);
   for (uint32_t& t : mesh.triangles) t = newIndex[rep[t]];
   return n - kept;
 }

@@ -13,7 +13,8 @@ namespace conformesh {
 //!                   vertex within Euclidean distance <= tolerance (absolute length units), else
 //!                   it is kept. Grid hashing with cell size = tolerance and the 27 neighbour
 //!                   cells. Not transitive (a chain a~b~c with |a-c| > tolerance may keep c).
-//! Kept vertices stay in their original relative order; a kept vertex keeps its position and uv.
+//! Kept vertices stay in their original relative order; a kept vertex keeps its position, uv and
+//! per-vertex attributes (per-corner attributes are unchanged: the triangles keep their corners).
 //! Triangles that become degenerate are kept (validation drops them). O(n) expected time.
 //! Returns the number of vertices removed. Throws Error(InvalidArgument) for a negative or NaN
 //! tolerance, or one so small that coordinates / tolerance exceeds 2^50 cells;

@@ -1,12 +1,15 @@
-// conformesh — mesh writers: OBJ (optional vt), OFF, STL ascii and binary, PLY ascii and binary
-// (little or big endian, double coordinates, uint32 indices).
+// conformesh — mesh writers: OBJ (optional vt, vn), OFF, STL ascii and binary, PLY ascii and
+// binary (little or big endian, double coordinates, uint32 indices, attributes as properties).
 #include <algorithm>
 #include <cmath>
 #include <cstdint>
+#include <cstring>
 #include <string>
+#include <unordered_map>
 #include <vector>
 
 #include "mesh/io_detail.h"
+#include "mesh/mesh_attributes.h"
 
 namespace conformesh {
 
@@ -30,6 +33,38 @@ void checkBuffers(const MeshBuffers& mesh) {
       fail(Code::NonFiniteCoordinate, Stage::Write, "vertex " + std::to_string(i / 2) + " has a non-finite uv");
   for (uint32_t t : mesh.triangles)
     if (t >= nv) fail(Code::IndexOutOfRange, Stage::Write, "triangle index " + std::to_string(t) + " >= vertex count");
+  checkAttributes(mesh, Stage::Write);
+}
+
+const MeshAttribute* findAttribute(const MeshBuffers& mesh, const char* name, uint32_t components) {
+  for (const MeshAttribute& a : mesh.attributes)
+    if (a.name == name && a.components == components) return &a;
+  return nullptr;
+}
+
+// An OBJ index list (vt or vn) for an attribute: per vertex, item v is vertex v; per corner,
+// equal values share one entry, numbered by first appearance.
+struct ObjIndexedValues {
+  std::vector<double> values;  // k per entry
+  std::vector<uint32_t> cornerIndex;  // per corner, its entry
+};
+ObjIndexedValues objIndexed(const MeshBuffers& mesh, const std::vector<double>& values, uint32_t k, bool perCorner) {
+  ObjIndexedValues out;
+  out.cornerIndex.resize(mesh.triangles.size());
+  if (!perCorner) {
+    out.values = values;
+    out.cornerIndex = mesh.triangles;
+    return out;
+  }
+  std::unordered_map<std::string, uint32_t> index;  // the values' bytes -> entry
+  for (size_t c = 0; c < mesh.triangles.size(); ++c) {
+    const double* v = &values[c * k];
+    std::string key(reinterpret_cast<const char*>(v), k * sizeof(double));
+    auto it = index.emplace(std::move(key), uint32_t(out.values.size() / k)).first;
+    if (it->second == out.values.size() / k) out.values.insert(out.values.end(), v, v + k);
+    out.cornerIndex[c] = it->second;
+  }
+  return out;
 }
 
 // Text output straight into the byte vector writeMesh returns.
@@ -97,8 +132,16 @@ void appendXYZ(TextOut& out, const double* p) {
   appendDouble(out, p[2]);
 }
 
-std::vector<uint8_t> writeObj(const MeshBuffers& mesh, bool uvs) {
-  TextOut s(mesh.vertexCount() * (uvs ? 100 : 60) + mesh.triangleCount() * (uvs ? 50 : 30) + 64);
+std::vector<uint8_t> writeObj(const MeshBuffers& mesh, bool uvs, bool attributes) {
+  // texture coordinates: per vertex (mesh.uvs) or per corner (the attribute "uv"); normals: the
+  // attribute "normal", either way
+  const MeshAttribute* cornerUv = uvs && mesh.uvs.empty() ? findAttribute(mesh, "uv", 2) : nullptr;
+  const MeshAttribute* normal = attributes ? findAttribute(mesh, "normal", 3) : nullptr;
+  ObjIndexedValues vt, vn;
+  const bool hasVt = uvs && (!mesh.uvs.empty() || cornerUv), hasVn = normal != nullptr;
+  if (hasVt) vt = cornerUv ? objIndexed(mesh, cornerUv->values, 2, true) : objIndexed(mesh, mesh.uvs, 2, false);
+  if (hasVn) vn = objIndexed(mesh, normal->values, 3, normal->perCorner);
+  TextOut s(mesh.vertexCount() * (hasVt ? 100 : 60) + mesh.triangleCount() * (hasVt ? 50 : 30) + 64);
   s += "# conformesh\n";
   const size_t nv = mesh.vertexCount();
   for (size_t v = 0; v < nv; ++v) {
@@ -106,23 +149,28 @@ std::vector<uint8_t> writeObj(const MeshBuffers& mesh, bool uvs) {
     appendXYZ(s, &mesh.positions[3 * v]);
     s += '\n';
   }
-  if (uvs)
-    for (size_t v = 0; v < nv; ++v) {
-      s += "vt ";
-      appendDouble(s, mesh.uvs[2 * v]);
-      s += ' ';
-      appendDouble(s, mesh.uvs[2 * v + 1]);
-      s += '\n';
-    }
+  for (size_t i = 0; i < vt.values.size(); i += 2) {
+    s += "vt ";
+    appendDouble(s, vt.values[i]);
+    s += ' ';
+    appendDouble(s, vt.values[i + 1]);
+    s += '\n';
+  }
+  for (size_t i = 0; i < vn.values.size(); i += 3) {
+    s += "vn ";
+    appendXYZ(s, &vn.values[i]);
+    s += '\n';
+  }
   for (size_t t = 0; t < mesh.triangleCount(); ++t) {
     s += 'f';
-    for (int k = 0; k < 3; ++k) {
-      const uint64_t i = mesh.triangles[3 * t + k] + uint64_t(1);
+    for (size_t c = 3 * t; c < 3 * t + 3; ++c) {
       s += ' ';
-      appendUInt(s, i);
-      if (uvs) {
+      appendUInt(s, mesh.triangles[c] + uint64_t(1));
+      if (hasVt || hasVn) s += '/';
+      if (hasVt) appendUInt(s, vt.cornerIndex[c] + uint64_t(1));
+      if (hasVn) {
         s += '/';
-        appendUInt(s, i);
+        appendUInt(s, vn.cornerIndex[c] + uint64_t(1));
       }
     }
     s += '\n';
@@ -214,40 +262,100 @@ std::vector<uint8_t> writeStlBinary(const MeshBuffers& mesh) {
   return out;
 }
 
-std::vector<uint8_t> writePly(const MeshBuffers& mesh, MeshFormat format, bool uvs) {
+// One scalar PLY property: values[stride · item + offset], written as a double, or as a uchar
+// (colours: 255 · the value clamped to [0, 1], rounded).
+struct PlyColumn {
+  std::string name;
+  const std::vector<double>* values;
+  uint32_t stride, offset;
+  bool uchar;
+};
+
+// The vertex properties after x y z: u v, then the per-vertex attributes ("normal" as nx ny nz,
+// "color" as uchar red green blue [alpha], a 1-component one by its name, others name_0, ...).
+std::vector<PlyColumn> plyVertexColumns(const MeshBuffers& mesh, bool uvs, bool attributes) {
+  std::vector<PlyColumn> cols;
+  if (uvs && !mesh.uvs.empty())
+    for (uint32_t k = 0; k < 2; ++k) cols.push_back({k ? "v" : "u", &mesh.uvs, 2, k, false});
+  for (const MeshAttribute& a : mesh.attributes) {
+    if (a.perCorner || !attributes) continue;
+    static const char* const kNormal[] = {"nx", "ny", "nz"};
+    static const char* const kColor[] = {"red", "green", "blue", "alpha"};
+    const bool normal = a.name == "normal" && a.components == 3;
+    const bool color = a.name == "color" && (a.components == 3 || a.components == 4);
+    for (uint32_t k = 0; k < a.components; ++k) {
+      std::string name = normal ? kNormal[k] : color ? kColor[k] : a.components == 1 ? a.name : a.name + "_" + std::to_string(k);
+      cols.push_back({std::move(name), &a.values, a.components, k, color});
+    }
+  }
+  return cols;
+}
+
+uint8_t colorByte(double v) { return uint8_t(std::lround(std::clamp(v, 0.0, 1.0) * 255.0)); }
+
+std::vector<uint8_t> writePly(const MeshBuffers& mesh, MeshFormat format, bool uvs, bool attributes) {
   const char* enc = format == MeshFormat::PlyAscii      ? "ascii"
                     : format == MeshFormat::PlyBinaryBE ? "binary_big_endian"
                                                         : "binary_little_endian";
+  const std::vector<PlyColumn> cols = plyVertexColumns(mesh, uvs, attributes);
+  // per-corner attributes: a list per face, 3 · components values ("uv" as MeshLab's texcoord)
+  std::vector<const MeshAttribute*> faceLists;
+  for (const MeshAttribute& a : mesh.attributes)
+    if (a.perCorner && 3 * a.components <= 255 && (a.name == "uv" ? uvs : attributes)) faceLists.push_back(&a);
+  auto listName = [](const MeshAttribute& a) { return a.name == "uv" ? std::string("texcoord") : a.name; };
   std::string h = std::string("ply\nformat ") + enc + " 1.0\ncomment written by conformesh\n";
   h += "element vertex " + std::to_string(mesh.vertexCount()) + "\n";
   h += "property double x\nproperty double y\nproperty double z\n";
-  if (uvs) h += "property double u\nproperty double v\n";
+  for (const PlyColumn& c : cols) h += std::string("property ") + (c.uchar ? "uchar " : "double ") + c.name + "\n";
   h += "element face " + std::to_string(mesh.triangleCount()) + "\n";
-  h += "property list uchar uint vertex_indices\nend_header\n";
+  h += "property list uchar uint vertex_indices\n";
+  for (const MeshAttribute* a : faceLists) h += "property list uchar double " + listName(*a) + "\n";
+  h += "end_header\n";
   const size_t nv = mesh.vertexCount(), nt = mesh.triangleCount();
   if (format == MeshFormat::PlyAscii) {
-    TextOut s(h.size() + nv * (uvs ? 100 : 60) + nt * 30);
+    TextOut s(h.size() + nv * (60 + 20 * cols.size()) + nt * 30);
     s += h;
     for (size_t v = 0; v < nv; ++v) {
       appendXYZ(s, &mesh.positions[3 * v]);
-      if (uvs) {
+      for (const PlyColumn& c : cols) {
         s += ' ';
-        appendDouble(s, mesh.uvs[2 * v]);
-        s += ' ';
-        appendDouble(s, mesh.uvs[2 * v + 1]);
+        const double x = (*c.values)[c.stride * v + c.offset];
+        if (c.uchar) appendUInt(s, colorByte(x));
+        else appendDouble(s, x);
       }
       s += '\n';
     }
-    for (size_t t = 0; t < nt; ++t) appendFace3(s, &mesh.triangles[3 * t]);
+    for (size_t t = 0; t < nt; ++t) {
+      if (faceLists.empty()) {
+        appendFace3(s, &mesh.triangles[3 * t]);
+        continue;
+      }
+      s += '3';
+      for (int k = 0; k < 3; ++k) {
+        s += ' ';
+        appendUInt(s, mesh.triangles[3 * t + k]);
+      }
+      for (const MeshAttribute* a : faceLists) {
+        s += ' ';
+        appendUInt(s, 3 * a->components);
+        for (size_t i = 3 * t * a->components; i < 3 * (t + 1) * a->components; ++i) {
+          s += ' ';
+          appendDouble(s, a->values[i]);
+        }
+      }
+      s += '\n';
+    }
     return s.take();
   }
   const bool be = format == MeshFormat::PlyBinaryBE;
-  const size_t perVertex = uvs ? 5 : 3;
+  size_t perVertex = 24, perFace = 13;
+  for (const PlyColumn& c : cols) perVertex += c.uchar ? 1 : 8;
+  for (const MeshAttribute* a : faceLists) perFace += 1 + 24 * size_t(a->components);
   std::vector<uint8_t> out(h.begin(), h.end());
   const size_t body = out.size();
-  if (nv > (SIZE_MAX / 2 - body) / (perVertex * 8) || nt > (SIZE_MAX / 2) / 13)
+  if (nv > (SIZE_MAX / 2 - body) / perVertex || nt > (SIZE_MAX / 2) / perFace)
     fail(Code::TooLarge, Stage::Write, "PLY would not fit in memory");
-  out.resize(body + nv * perVertex * 8 + nt * 13);
+  out.resize(body + nv * perVertex + nt * perFace);
   uint8_t* q = out.data() + body;
   auto put = [&](const void* src, size_t n) {
     const uint8_t* s = static_cast<const uint8_t*>(src);
@@ -256,12 +364,19 @@ std::vector<uint8_t> writePly(const MeshBuffers& mesh, MeshFormat format, bool u
   };
   for (size_t v = 0; v < nv; ++v) {
     for (int k = 0; k < 3; ++k) put(&mesh.positions[3 * v + k], 8);
-    if (uvs)
-      for (int k = 0; k < 2; ++k) put(&mesh.uvs[2 * v + k], 8);
+    for (const PlyColumn& c : cols) {
+      const double& x = (*c.values)[c.stride * v + c.offset];
+      if (c.uchar) *q++ = colorByte(x);
+      else put(&x, 8);
+    }
   }
   for (size_t t = 0; t < nt; ++t) {
     *q++ = 3;
     for (int k = 0; k < 3; ++k) put(&mesh.triangles[3 * t + k], 4);
+    for (const MeshAttribute* a : faceLists) {
+      *q++ = uint8_t(3 * a->components);
+      for (size_t i = 3 * t * a->components; i < 3 * (t + 1) * a->components; ++i) put(&a->values[i], 8);
+    }
   }
   return out;
 }
@@ -270,15 +385,15 @@ std::vector<uint8_t> writePly(const MeshBuffers& mesh, MeshFormat format, bool u
 
 std::vector<uint8_t> writeMesh(const MeshBuffers& mesh, MeshFormat format, const WriteOptions& options) {
   checkBuffers(mesh);
-  const bool uvs = options.writeUvs && !mesh.uvs.empty();
+  const bool uvs = options.writeUvs, attributes = options.writeAttributes;
   switch (format) {
-    case MeshFormat::Obj: return writeObj(mesh, uvs);
+    case MeshFormat::Obj: return writeObj(mesh, uvs, attributes);
     case MeshFormat::Off: return writeOff(mesh);
     case MeshFormat::StlAscii: return writeStlAscii(mesh);
     case MeshFormat::StlBinary: return writeStlBinary(mesh);
     case MeshFormat::PlyAscii:
     case MeshFormat::PlyBinaryLE:
-    case MeshFormat::PlyBinaryBE: return writePly(mesh, format, uvs);
+    case MeshFormat::PlyBinaryBE: return writePly(mesh, format, uvs, attributes);
     case MeshFormat::Auto: break;
   }
   fail(Code::InvalidArgument, Stage::Write, "writeMesh needs a concrete format, not auto");

@@ -1,10 +1,13 @@
 #include "remesh/remesh.h"
 
+#include <array>
 #include <chrono>
 #include <string>
 
 #include "core/detmath.h"
 #include "features/curve_mesh.h"
+#include "mesh/mesh_attributes.h"
+#include "remesh/carry_attributes.h"
 #include "remesh/certificate.h"
 #include "remesh/curve_samples.h"
 #include "remesh/flatten_patches.h"
@@ -120,6 +123,15 @@ RemeshResult run(const MeshBuffers& input, const RemeshOptions& opt, const Progr
       for (uint32_t& f : rp.layoutInputFace) f = surf.vm.faceToInput[surf.pre.faceOrigin[f]];
     res.patchOfTriangle = best.triPatch;
   }
+  if (opt.returnSurfacePoints || (opt.carryAttributes && hasAttributes(input))) {  // remesh/carry_attributes.h
+    std::vector<uint32_t> hint(best.vertexFace.size(), kNone);
+    for (size_t v = 0; v < hint.size(); ++v)
+      if (best.vertexFace[v] < surf.vm.buffers.triangleCount()) hint[v] = surf.vm.faceToInput[best.vertexFace[v]];
+    CornerPoints cp = locateCorners(input, res.mesh, hint);
+    if (opt.carryAttributes) interpolateAttributes(input, cp, res.mesh);
+    res.cornerInputFace = std::move(cp.face);
+    res.cornerBarycentric = std::move(cp.barycentric);
+  }
   return res;
 }
 
@@ -128,7 +140,19 @@ RemeshResult run(const MeshBuffers& input, const RemeshOptions& opt, const Progr
 RemeshResult remesh(const MeshBuffers& input, const RemeshOptions& options, ProgressFn progress) {
   RemeshResult r;
   try {
-    r = run(input, options, progress);
+    // attribute seams are kept as feature curves (remesh/carry_attributes.h)
+    std::vector<std::array<uint32_t, 2>> seams;
+    if (options.carryAttributes) {
+      checkAttributes(input, Stage::Api);
+      seams = attributeSeams(input);
+    }
+    RemeshOptions withSeams;
+    if (!seams.empty()) {
+      withSeams = options;
+      withSeams.featureEdges.insert(withSeams.featureEdges.end(), seams.begin(), seams.end());
+    }
+    r = run(input, seams.empty() ? options : withSeams, progress);
+    r.report.seamEdges = seams.size();
   } catch (const Error& e) {
     r = RemeshResult{};
     r.status = e.status();

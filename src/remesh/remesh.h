@@ -78,6 +78,18 @@ struct RemeshOptions {
   //! Return every patch's planar data in RemeshResult::patches (for display: the flattened
   //! input and the refined planar mesh) and the patch of every output triangle.
   bool returnPatches = false;
+  //! Carry the input's uvs and attributes (MeshBuffers::uvs, ::attributes: texture coordinates,
+  //! normals, colours, any value) over to the output (remesh/carry_attributes.h): the edges where
+  //! a per-corner attribute jumps (uv seams: attributeSeams, mesh/mesh_attributes.h) are kept as
+  //! feature curves, like featureEdges, so no output triangle straddles one and texture charts
+  //! stay whole; every output corner's value is the input's interpolated at its pull-back point
+  //! (RemeshResult::cornerInputFace, on the triangle's side of the seams). A per-vertex input
+  //! attribute stays per vertex, a per-corner one per corner. Normals are renormalized. false:
+  //! the output has positions and triangles only, as without attributes.
+  bool carryAttributes = true;
+  //! Return RemeshResult::cornerInputFace and cornerBarycentric even for an input without
+  //! attributes (with attributes and carryAttributes they always come back).
+  bool returnSurfacePoints = false;
   //! Two-sided Hausdorff distance in the report (sampled; costs time on big meshes).
   bool computeHausdorff = true;
   size_t hausdorffSamples = 50000;
@@ -137,6 +149,7 @@ struct RemeshReport {
   size_t featureCurves = 0, featureCurvesKept = 0;
   size_t sharpEdges = 0, cutEdges = 0;
   size_t droppedFeatureEdges = 0;  //!< sharp edges found not to be creases (minFeatureLength)
+  size_t seamEdges = 0;  //!< input edges kept as feature curves for being attribute seams (carryAttributes)
   size_t patches = 0, curves = 0, curveSamples = 0;
   std::vector<int> flowIterations;  //!< Newton iterations per patch
   size_t patchSplitsForScale = 0;
@@ -164,6 +177,13 @@ struct RemeshResult {
   RemeshReport report;
   std::vector<RemeshPatch> patches;        //!< with RemeshOptions::returnPatches
   std::vector<uint32_t> patchOfTriangle;   //!< with RemeshOptions::returnPatches: patch per output triangle
+  //! The pull-back point of every output corner (corner c of triangle t is 3·t + c), with
+  //! attributes carried or RemeshOptions::returnSurfacePoints: the input triangle (input
+  //! numbering) its vertex lies on, on the triangle's side of every attribute seam, and
+  //! 3 barycentric coordinates per corner (w.r.t. that input triangle's corners 0, 1, 2; they sum
+  //! to 1, and weight its vertices to the output vertex's position up to rounding). Empty otherwise.
+  std::vector<uint32_t> cornerInputFace;
+  std::vector<double> cornerBarycentric;
 };
 
 //! Remesh a triangle mesh. Never throws: failures come back in `status` (codes from the input

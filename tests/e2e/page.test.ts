@@ -76,6 +76,26 @@ async function canvasStats(testid: string, name: string) {
   return pixelStats(decodePng(png));
 }
 
+/** Share of a view's surface pixels with a strong luminance step to their right neighbour (a checker texture has many). */
+async function edgeDensity(testid: string, name: string): Promise<number> {
+  await page.evaluate(() => (window as unknown as { conformeshPage: { renderAll(): void } }).conformeshPage.renderAll());
+  const png = await page.locator(`[data-testid=${testid}] canvas`).screenshot();
+  await writeFile(join(results, `page-${name}.png`), png);
+  const img = decodePng(png);
+  const bg = backgroundOf(img);
+  const lum = (i: number) => 0.2126 * img.data[i]! + 0.7152 * img.data[i + 1]! + 0.0722 * img.data[i + 2]!;
+  const isBg = (i: number) => Math.abs(img.data[i]! - bg[0]) + Math.abs(img.data[i + 1]! - bg[1]) + Math.abs(img.data[i + 2]! - bg[2]) <= 24;
+  let surface = 0, steps = 0;
+  for (let y = 0; y < img.height; ++y)
+    for (let x = 0; x + 1 < img.width; ++x) {
+      const i = 4 * (y * img.width + x);
+      if (isBg(i) || isBg(i + 4)) continue;
+      ++surface;
+      if (Math.abs(lum(i) - lum(i + 4)) > 60) ++steps;
+    }
+  return steps / Math.max(surface, 1);
+}
+
 /** A CSS-pixel point of a view's canvas that shows a triangle: nearest the centre, its 5x5 neighbourhood all off the background. */
 async function surfacePoint(testid: string): Promise<{ x: number; y: number }> {
   await page.evaluate(() => (window as unknown as { conformeshPage: { renderAll(): void } }).conformeshPage.renderAll());
@@ -617,6 +637,34 @@ describe('demo page in headless Chromium', () => {
     await page.waitForFunction(() => document.querySelector('[data-testid=mesh-name]')?.textContent?.startsWith('needs-repair.obj:'), undefined, { timeout: 30_000 });
     expect(await page.isVisible('[data-testid=notice]')).toBe(true);
     expect(await page.textContent('[data-testid=notice]')).toMatch(/Topology findings/);
+  });
+
+  it('spot: "checker uv" textures the input, and the remesh with the uvs carried over; off without uvs', async () => {
+    await page.selectOption('#sample', 'plate');
+    expect(await waitState(['loaded', 'error'], 30_000)).toBe('loaded');
+    expect(await page.$eval('#show-input-texture', (e) => (e as HTMLInputElement).disabled)).toBe(true); // no uvs
+    await page.selectOption('#sample', 'spot');
+    await page.waitForFunction(() => document.querySelector('[data-testid=mesh-name]')?.textContent?.startsWith('spot.obj:'), undefined, { timeout: 30_000 });
+    expect(await waitState(['loaded', 'error'], 30_000)).toBe('loaded');
+    expect(await page.$eval('#show-input-texture', (e) => (e as HTMLInputElement).disabled)).toBe(false);
+    const plain = await edgeDensity('canvas-input', 'spot-input');
+    await page.click('#show-input-texture');
+    const checker = await edgeDensity('canvas-input', 'spot-input-checker');
+    expect(checker).toBeGreaterThan(2 * plain); // the checker's dark and light cells
+    if (!HAS_REMESH) return;
+    await page.click('[data-testid=remesh]');
+    expect(await waitState(['remeshed', 'error'], 120_000)).toBe('remeshed');
+    expect(await page.$eval('#show-remesh-texture', (e) => (e as HTMLInputElement).disabled)).toBe(false);
+    const wire = await page.$eval('#show-remesh-wire', (e) => (e as HTMLInputElement).checked);
+    if (wire) await page.click('#show-remesh-wire');
+    const out = await edgeDensity('canvas-remesh', 'spot-remesh');
+    await page.click('#show-remesh-texture');
+    const outChecker = await edgeDensity('canvas-remesh', 'spot-remesh-checker');
+    expect(outChecker).toBeGreaterThan(2 * out);
+    await shot('spot-checker-uv');
+    await page.click('#show-input-texture');
+    await page.click('#show-remesh-texture');
+    if (wire) await page.click('#show-remesh-wire');
   });
 
   it('a curved disk gets a flatten preview coloured by its conformal factor', async () => {

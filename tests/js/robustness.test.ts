@@ -36,7 +36,7 @@ describe('robustness', () => {
     for (let i = 0; i < 100_000; ++i) expectConformeshError(bad[i % bad.length]!);
     // Raw glue calls straight into the module (no facade type checks): the result objects say ok: false.
     for (let i = 0; i < 1000; ++i) {
-      const r = raw.readMesh!(new Uint8Array([0x4f, 0x46, 0x46]), 'off', '', 0, true);
+      const r = raw.readMesh!(new Uint8Array([0x4f, 0x46, 0x46]), 'off', '', 0, true, true);
       expect(r.ok).toBe(false);
     }
     expect(raw.stackSave()).toBe(rawSpBefore);

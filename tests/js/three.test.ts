@@ -6,7 +6,7 @@ import { dataFile } from './helpers.js';
 
 describe('conformesh/three', () => {
   it('toBufferGeometry: position/index/normal attributes matching the mesh; uvs when present', async () => {
-    const m = (await init()).readMesh(dataFile('spot.obj'));
+    const m = (await init()).readMesh(dataFile('spot.obj'), { readUvs: false }); // its uv seams split vertices: attributes.test.ts
     const g = toBufferGeometry(m);
     expect(g.getAttribute('position').count).toBe(m.positions.length / 3);
     expect(Array.from(g.getIndex()!.array)).toEqual(Array.from(m.triangles));

@@ -2,7 +2,16 @@
 // main thread), plus the shapes the views need. Functions the package build does not offer yet
 // (remesh, flatten) are detected here, so the page can say "not available in this build" rather
 // than pretend.
-import { ConformeshError, createRemesher, type MeshInfo, type MeshLike, type ReadMeshResult, type Remesher, type RemeshReport } from 'conformesh';
+import {
+  ConformeshError,
+  createRemesher,
+  type MeshAttribute,
+  type MeshInfo,
+  type MeshLike,
+  type ReadMeshResult,
+  type Remesher,
+  type RemeshReport,
+} from 'conformesh';
 import { mountingPlate } from './plate.ts';
 
 export type BoundaryCondition = 'corners' | 'free' | 'disk';
@@ -22,6 +31,8 @@ export interface Mesh3 {
   positions: Float64Array;
   triangles: Uint32Array;
   uvs?: Float64Array;
+  /** The file's texture coordinates (per corner at uv seams), normals, colours..., carried through remesh. */
+  attributes?: MeshAttribute[];
 }
 
 /** One patch of the flattened domain (planar coordinates are per patch). */
@@ -218,6 +229,7 @@ export class Engine {
     };
     const uvs = f64(m.uvs);
     if (uvs) out.mesh.uvs = uvs;
+    if (Array.isArray(m.attributes) && m.attributes.length) out.mesh.attributes = m.attributes as MeshAttribute[];
     const pot = u32(pick(raw, 'patchOfTriangle', 'trianglePatch', 'facePatch', 'patchIds'));
     if (pot) out.patchOfTriangle = pot;
     const ipf = u32(pick(raw, 'inputPatchOfFace', 'inputFacePatch', 'segmentation'));

@@ -19,12 +19,14 @@ import {
   edgeLines,
   faceColoredMesh,
   flatScene,
+  hasUv,
   materialSamples,
   minAngleColor,
   paintFaces,
   paintFlat,
   patchColor,
   selectionShade,
+  texturedMesh,
   wireframe,
   type FlatScene,
 } from './scenes.ts';
@@ -79,7 +81,16 @@ const lastRemesh = {
 };
 
 const params: Params = { minAngle: 30, edgeLength: 0.02, featureAngle: 40, chordTolerance: 0.001, boundary: 'free' };
-const toggles = { features: true, patches: true, inputWire: false, layout: true, refined: true, remeshWire: true };
+const toggles = {
+  features: true,
+  patches: true,
+  inputWire: false,
+  inputTexture: false,
+  layout: true,
+  refined: true,
+  remeshWire: true,
+  remeshTexture: false,
+};
 /** The exempt corners' dots in views 1 and 3. */
 const CORNER_COLOR = 0xff3df0;
 
@@ -114,6 +125,8 @@ for (const v of views) {
 }
 
 let inputMesh: Mesh | undefined;
+let inputTextured: Mesh | undefined;
+let remeshTextured: Mesh | undefined;
 let inputFeatures: LineSegments | undefined;
 let inputWire: LineSegments | undefined;
 let flat: FlatScene | undefined;
@@ -203,9 +216,33 @@ function paintInput(): void {
   inputView.requestRender();
 }
 
+/**
+ * The checker-textured copy of a view's mesh (built on first use) shown instead of its coloured
+ * faces while the view's "checker uv" toggle is on; the toggle is off and disabled without uvs.
+ */
+function showTexture(which: 'input' | 'remesh'): void {
+  const view = which === 'input' ? inputView : remeshView;
+  const mesh = which === 'input' ? input?.mesh : output?.result.mesh;
+  const faces = which === 'input' ? inputMesh : remeshMesh;
+  const box = $<HTMLInputElement>(which === 'input' ? '#show-input-texture' : '#show-remesh-texture');
+  const key = which === 'input' ? 'inputTexture' : 'remeshTexture';
+  box.disabled = !mesh || !hasUv(mesh);
+  const on = toggles[key] && !box.disabled;
+  let textured = which === 'input' ? inputTextured : remeshTextured;
+  if (on && !textured && mesh) {
+    textured = texturedMesh(mesh);
+    view.scene.add(textured);
+    if (which === 'input') inputTextured = textured;
+    else remeshTextured = textured;
+  }
+  if (textured) textured.visible = on;
+  if (faces) faces.visible = !on;
+  view.requestRender();
+}
+
 function buildInput(frame: boolean): void {
   inputView.clear();
-  inputMesh = inputFeatures = inputWire = undefined;
+  inputMesh = inputFeatures = inputWire = inputTextured = undefined;
   if (!input) return;
   inputMesh = faceColoredMesh(input.mesh);
   inputView.scene.add(inputMesh);
@@ -220,6 +257,7 @@ function buildInput(frame: boolean): void {
   inputCorners = undefined;
   placeInputCorners();
   paintInput();
+  showTexture('input');
   if (frame) inputView.frame([inputMesh]);
   inputView.requestRender();
 }
@@ -302,7 +340,8 @@ function ensureRemeshWire(): void {
 
 function buildRemesh(): void {
   remeshView.clear();
-  remeshMesh = remeshWire = remeshCorners = undefined;
+  remeshMesh = remeshWire = remeshCorners = remeshTextured = undefined;
+  showTexture('remesh');
   if (!engine.canRemesh) {
     showUnavailable('#remesh-unavailable', 'Remeshing is not available in this build of conformesh: the package has no remesh binding yet. The Remesh button is disabled; nothing is faked here.');
     return;
@@ -321,6 +360,7 @@ function buildRemesh(): void {
     remeshView.scene.add(remeshCorners);
   }
   paintRemesh();
+  showTexture('remesh');
   // same camera as the input view
   remeshView.camera.position.copy(inputView.camera.position);
   remeshView.controls.target.copy(inputView.controls.target);
@@ -638,7 +678,10 @@ async function load(bytes: Uint8Array, name: string): Promise<void> {
   try {
     const read = await engine.read(bytes, name);
     if (seq !== loadSeq) return;
+    // the file's uvs and attributes go to the remesh, which carries them over (checker uv toggles)
     const mesh: Mesh3 = { positions: read.positions, triangles: read.triangles };
+    if (read.uvs) mesh.uvs = read.uvs;
+    if (read.attributes) mesh.attributes = read.attributes;
     let info: MeshInfo | undefined;
     try {
       info = await engine.info(mesh);
@@ -968,6 +1011,8 @@ bindToggle('#show-input-wire', 'inputWire', () => {
   if (inputWire) inputWire.visible = toggles.inputWire;
   inputView.requestRender();
 });
+bindToggle('#show-input-texture', 'inputTexture', () => showTexture('input'));
+bindToggle('#show-remesh-texture', 'remeshTexture', () => showTexture('remesh'));
 bindToggle('#show-layout', 'layout', () => { for (const l of flat?.layoutLines ?? []) l.visible = toggles.layout; flatView.requestRender(); });
 bindToggle('#show-refined', 'refined', () => { for (const l of flat?.refinedLines ?? []) l.visible = toggles.refined; flatView.requestRender(); });
 bindToggle('#show-remesh-wire', 'remeshWire', () => {

@@ -69,6 +69,7 @@ export const QUALITY: readonly QualityEntry[] = [
   { key: 'targetEdgeLength', label: 'target edge length', unit: 'length', group: 'output' },
   { key: 'delaunayFraction', label: 'edges that are Delaunay in 3D', unit: 'frac', group: 'output' },
   { key: 'featureCurvesKept', label: 'feature curves kept', unit: 'count', group: 'output' },
+  { key: 'seamEdges', label: 'uv seam edges kept as curves', unit: 'count', group: 'output', hint: 'edges where the file\u2019s texture coordinates (or other per-corner data) jump: kept so that no triangle straddles one' },
   { key: 'topologyPreserved', label: 'same topology as the input', unit: 'yesno', group: 'output' },
   // ---- pipeline: how the library got there
   { key: 'patches', label: 'patches flattened', unit: 'count', group: 'pipeline' },

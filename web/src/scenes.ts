@@ -3,6 +3,7 @@
 import {
   BufferAttribute,
   BufferGeometry,
+  DataTexture,
   DoubleSide,
   Group,
   LineBasicMaterial,
@@ -12,12 +13,26 @@ import {
   MeshStandardMaterial,
   Points,
   PointsMaterial,
+  RepeatWrapping,
+  SRGBColorSpace,
   type Object3D,
 } from 'three';
 import { toBufferGeometry } from 'conformesh/three';
 import type { FlatPatch, Mesh3 } from './engine.ts';
 import { minAngleColor, patchColor, ramp, type RGB } from './colors.ts';
 import { packBoxes, patchBox, type Box2 } from './atlas.ts';
+
+/** The surface material of the 3D views (pushed back so that lines over it show), plus `extra`. */
+function surfaceMaterial(extra: ConstructorParameters<typeof MeshStandardMaterial>[0]): MeshStandardMaterial {
+  return new MeshStandardMaterial({
+    metalness: 0,
+    side: DoubleSide,
+    polygonOffset: true,
+    polygonOffsetFactor: 1,
+    polygonOffsetUnits: 1,
+    ...extra,
+  });
+}
 
 /** A non-indexed triangle mesh (one colour per triangle) with flat shading. */
 export function faceColoredMesh(mesh: Mesh3): Mesh {
@@ -27,17 +42,39 @@ export function faceColoredMesh(mesh: Mesh3): Mesh {
   geometry.deleteAttribute('normal');
   geometry.computeVertexNormals();
   geometry.setAttribute('color', new BufferAttribute(new Float32Array(mesh.triangles.length * 3), 3));
-  const material = new MeshStandardMaterial({
-    vertexColors: true,
-    flatShading: true,
-    roughness: 0.85,
-    metalness: 0,
-    side: DoubleSide,
-    polygonOffset: true,
-    polygonOffsetFactor: 1,
-    polygonOffsetUnits: 1,
-  });
-  return new Mesh(geometry, material);
+  return new Mesh(geometry, surfaceMaterial({ vertexColors: true, flatShading: true, roughness: 0.85 }));
+}
+
+/** True when the mesh has texture coordinates (per vertex, or per corner at uv seams). */
+export function hasUv(mesh: Mesh3): boolean {
+  return !!mesh.uvs || !!mesh.attributes?.some((a) => a.name === 'uv' && a.itemSize === 2);
+}
+
+let checker: DataTexture | undefined;
+
+/** A checker texture, 16 × 16 cells over [0, 1]² (shared by every textured mesh). */
+function checkerTexture(): DataTexture {
+  if (checker) return checker;
+  const n = 256, cells = 16;
+  const data = new Uint8Array(4 * n * n);
+  for (let y = 0; y < n; ++y)
+    for (let x = 0; x < n; ++x) {
+      const on = ((Math.floor((x * cells) / n) + Math.floor((y * cells) / n)) & 1) === 1;
+      data.set(on ? [40, 44, 52, 255] : [235, 228, 205, 255], 4 * (y * n + x));
+    }
+  checker = new DataTexture(data, n, n);
+  checker.wrapS = checker.wrapT = RepeatWrapping;
+  checker.colorSpace = SRGBColorSpace;
+  checker.needsUpdate = true;
+  return checker;
+}
+
+/**
+ * The mesh with a checker texture through its uvs (conformesh/three splits the vertices on uv
+ * seams), smooth shaded: distortion and seams of the texture mapping show.
+ */
+export function texturedMesh(mesh: Mesh3): Mesh {
+  return new Mesh(toBufferGeometry(mesh), surfaceMaterial({ map: checkerTexture(), roughness: 0.9 }));
 }
 
 /** Set triangle f's colour in a faceColoredMesh. */

@@ -72,20 +72,29 @@ TEST_CASE("OBJ: every corner syntax, absolute and relative indices, LF and CRLF 
   }
 }
 
-TEST_CASE("OBJ: uvs kept when each vertex has one vt (any vt order), dropped at a seam") {
+TEST_CASE("OBJ: uvs kept per vertex when each vertex has one vt (any vt order), per corner at a seam") {
   // vt listed in reverse order: vertex v uses vt (n - v).
   std::string s = "v 0 0 0\nv 1 0 0\nv 0 1 0\nv 1 1 0\nvt 0.75 0.5\nvt 0.25 0.5\nvt 1 0\nvt 0 0\n"
                   "f 1/4 2/3 3/2\nf 2/3 4/1 3/2\n";
   ReadResult r = readMesh(bytesOf(s));
   REQUIRE(r.mesh.uvs.size() == 8);
   CHECK(r.mesh.uvs == std::vector<double>{0, 0, 1, 0, 0.25, 0.5, 0.75, 0.5});
-  // Vertex 3 with two different vt: a seam. Positions stay shared, uvs dropped with a warning.
+  // Vertex 3 with two different vt: a seam. Positions stay shared, uvs per corner.
   std::string seam = "v 0 0 0\nv 1 0 0\nv 0 1 0\nv 1 1 0\nvt 0 0\nvt 1 0\nvt 0 1\nvt 1 1\nvt 0.5 0.5\n"
                      "f 1/1 2/2 3/3\nf 2/2 4/4 3/5\n";
   ReadResult r2 = readMesh(bytesOf(seam));
   CHECK(r2.mesh.uvs.empty());
   CHECK(r2.mesh.triangleCount() == 2);
-  CHECK(r2.warnings.size() == 1);
+  CHECK(r2.warnings.empty());
+  REQUIRE(r2.mesh.attributes.size() == 1);
+  CHECK(r2.mesh.attributes[0].name == "uv");
+  CHECK(r2.mesh.attributes[0].perCorner);
+  CHECK(r2.mesh.attributes[0].values == std::vector<double>{0, 0, 1, 0, 0, 1, 1, 0, 1, 1, 0.5, 0.5});
+  // a face corner without vt: uvs dropped with a warning
+  ReadResult r3 = readMesh(bytesOf("v 0 0 0\nv 1 0 0\nv 0 1 0\nv 1 1 0\nvt 0 0\nf 1/1 2/1 3/1\nf 2 4 3\n"));
+  CHECK(r3.mesh.uvs.empty());
+  CHECK(r3.mesh.attributes.empty());
+  CHECK(r3.warnings.size() == 1);
   ReadOptions noUv;
   noUv.readUvs = false;
   CHECK(readMesh(bytesOf(s), noUv).mesh.uvs.empty());

@@ -3,6 +3,7 @@
 // random and mutated inputs yield some Error (never a crash, a hang, or a huge allocation).
 #include <doctest/doctest.h>
 
+#include "mesh/mesh_attributes.h"
 #include "mesh/mesh_io.h"
 #include "mesh_io_test_util.h"
 
@@ -27,6 +28,7 @@ Code codeOf(const uint8_t* data, size_t size, MeshFormat f = MeshFormat::Auto, s
     CHECK(r.mesh.triangleCount() > 0);
     for (uint32_t t : r.mesh.triangles) CHECK(t < r.mesh.vertexCount());
     for (double x : r.mesh.positions) CHECK(std::isfinite(x));
+    CHECK_NOTHROW(checkAttributes(r.mesh, Stage::Read));  // attribute sizes match, values finite
   } catch (const Error& e) {
     if (msg) *msg = e.what();
     CHECK(e.stage() == Stage::Read);
@@ -54,6 +56,16 @@ std::vector<std::vector<uint8_t>> seeds() {
   std::vector<std::vector<uint8_t>> s;
   for (MeshFormat f : {MeshFormat::Obj, MeshFormat::Off, MeshFormat::StlAscii, MeshFormat::StlBinary,
                        MeshFormat::PlyAscii, MeshFormat::PlyBinaryLE, MeshFormat::PlyBinaryBE})
+    s.push_back(writeMesh(m, f));
+  // with attributes: uvs per corner (a seam at every vertex), normals per corner, a colour and a
+  // scalar per vertex (OBJ vt/vn, PLY properties and the texcoord face list)
+  m.uvs.clear();
+  MeshAttribute uv{"uv", 2, true, {}}, normal{"normal", 3, true, {}}, color{"color", 3, false, {}}, q{"quality", 1, false, {}};
+  for (size_t c = 0; c < m.triangles.size(); ++c) uv.values.insert(uv.values.end(), {double(c % 7) / 7, double(c % 5) / 5}),
+                                                  normal.values.insert(normal.values.end(), {0.0, double(c % 2), 1.0});
+  for (size_t v = 0; v < m.vertexCount(); ++v) color.values.insert(color.values.end(), {double(v % 3) / 2, 0.5, 1.0}), q.values.push_back(double(v));
+  m.attributes = {uv, normal, color, q};
+  for (MeshFormat f : {MeshFormat::Obj, MeshFormat::PlyAscii, MeshFormat::PlyBinaryLE, MeshFormat::PlyBinaryBE})
     s.push_back(writeMesh(m, f));
   return s;
 }
