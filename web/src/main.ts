@@ -12,7 +12,7 @@ import { drawHistogram } from './histogram.ts';
 import { mountingPlateOff } from './plate.ts';
 import { FrameProbe } from './probe.ts';
 import { GROUPS, QUALITY, entryOf, formatValue, reportedStages, reportValues, stageKey, stageLabel, type Unit, type Value } from './quality.ts';
-import { StageProgress, type BarUpdate } from './stages.ts';
+import { ProgressPanel } from './progress-panel.ts';
 import {
   NEUTRAL,
   cornerMarkers,
@@ -110,7 +110,7 @@ engine.version().then(
   (v) => {
     $('#version').textContent = `v${v}`;
     // the warm-up's report names the stages the library reports: one bar each, before any run
-    void engine.warmUp().then((r) => { if (r) addBars(reportedStages(r)); });
+    void engine.warmUp().then((r) => { if (r) progress.addBars(reportedStages(r)); });
   },
   (e) => showError(errorBox, e, 'loading the conformesh module'),
 );
@@ -543,110 +543,7 @@ function cornerPositions(mesh: Mesh3, which: 'vertex' | 'outputVertex'): Float64
 }
 
 // ---------------------------------------------------------------- progress
-const progressList = $('#progress');
-const runStatus = $('#run-status');
-const stageProgress = new StageProgress();
-/** The progress events of the last remesh as received, and the bar values shown (for the tests). */
-const progressLog: { events: { stage: string; fraction: number }[]; bars: BarUpdate[] } = { events: [], bars: [] };
-const bars = new Map<string, { li: HTMLLIElement; bar: HTMLDivElement; time: HTMLDivElement; label: HTMLSpanElement }>();
-
-/** Bars for these library stages (new ones only), in the order stageProgress keeps. */
-function addBars(stages: readonly string[]): void {
-  if (stageProgress.adopt(stages).length === 0) return;
-  syncBars();
-}
-
-/** One <li> per stage of stageProgress, in its order. */
-function syncBars(): void {
-  for (const key of stageProgress.order) {
-    if (bars.has(key)) continue;
-    const li = document.createElement('li');
-    const name = document.createElement('span');
-    name.textContent = stageLabel(stageProgress.names.get(key)!);
-    const seconds = entryOf(`seconds.${stageProgress.names.get(key)}`);
-    li.title = seconds?.label.replace(/^time: /, '') ?? name.textContent;
-    const outer = document.createElement('div');
-    outer.className = 'bar';
-    const bar = document.createElement('div');
-    const time = document.createElement('div');
-    time.className = 'time';
-    outer.append(bar, time);
-    const label = document.createElement('span');
-    li.append(name, outer, label);
-    li.dataset.stage = key;
-    bars.set(key, { li, bar, time, label });
-  }
-  progressList.replaceChildren(...stageProgress.order.map((k) => bars.get(k)!.li));
-}
-
-function resetProgress(): void {
-  stageProgress.reset();
-  progressLog.events = [];
-  progressLog.bars = [];
-  for (const { li, bar, time, label } of bars.values()) {
-    li.className = '';
-    bar.style.width = '0';
-    time.style.width = '0';
-    label.textContent = '';
-  }
-}
-
-/** The result is in: every stage has ended; each bar gets its stage's time from the report. */
-function finishProgress(report: RemeshReport): void {
-  addBars(reportedStages(report));
-  for (const u of stageProgress.finish()) showBar(u);
-  const total = report.seconds.total;
-  for (const stage of reportedStages(report)) {
-    const b = bars.get(stageKey(stage))!;
-    const s = (report.seconds as unknown as Record<string, number>)[stage]!;
-    b.label.textContent = `${s.toFixed(2)} s`;
-    b.time.style.width = `${(100 * Math.min(1, total > 0 ? s / total : 0)).toFixed(1)}%`;
-    b.li.title = `${entryOf(`seconds.${stage}`)?.label.replace(/^time: /, '') ?? stage}: ${s.toFixed(3)} s of ${total.toFixed(3)} s`;
-  }
-}
-
-function showBar(u: BarUpdate): void {
-  progressLog.bars.push(u);
-  const b = bars.get(u.stage)!;
-  b.bar.style.width = `${(100 * u.value).toFixed(1)}%`;
-  b.label.textContent = `${Math.floor(100 * u.value)}%`;
-  b.li.className = u.value >= 1 ? 'done' : 'running';
-}
-
-/** A library progress event (fraction: of the whole call) shown as the stage's own progress. */
-function setProgress(stage: string, fraction: number): void {
-  progressLog.events.push({ stage, fraction });
-  const known = stageProgress.values.has(stageKey(stage));
-  const updates = stageProgress.update(stage, fraction);
-  if (!known) syncBars();
-  for (const u of updates) showBar(u);
-  run.stage = stage;
-  run.fraction = Math.max(run.fraction, fraction);
-  showRunStatus();
-}
-
-/** The running remesh, for the status line: its start, the last stage and overall fraction reported. */
-const run = { startAt: NaN, stage: '', fraction: 0, timer: 0 as ReturnType<typeof setInterval> | 0 };
-
-function showRunStatus(): void {
-  if (!running) return;
-  const elapsed = (performance.now() - run.startAt) / 1000;
-  const stage = run.stage ? `${stageLabel(run.stage)} · ` : 'starting · ';
-  runStatus.textContent = `${stage}${Math.floor(100 * run.fraction)}% · ${elapsed.toFixed(1)} s`;
-}
-
-/** The status line while a remesh runs (ticks every 100 ms) and after it ends. */
-function startRunStatus(): void {
-  Object.assign(run, { startAt: performance.now(), stage: '', fraction: 0 });
-  showRunStatus();
-  run.timer = setInterval(showRunStatus, 100);
-}
-
-function endRunStatus(text: string): void {
-  if (run.timer) clearInterval(run.timer);
-  run.timer = 0;
-  runStatus.textContent = text;
-}
+const progress = new ProgressPanel($('#progress'), $('#run-status'), () => !!running);
 
 // ---------------------------------------------------------------- loading
 function notice(text: string | undefined): void {
@@ -711,8 +608,8 @@ async function load(bytes: Uint8Array, name: string): Promise<void> {
       (read.warnings.length ? ` — reader: ${read.warnings.join('; ')}` : '');
     const findings = (info?.warnings ?? []).map((w) => (typeof w === 'string' ? w : (w as { message: string }).message));
     notice(findings.length ? `Topology findings (the remesher repairs or rejects these): ${findings.join('; ')}` : undefined);
-    resetProgress();
-    endRunStatus('');
+    progress.reset();
+    progress.endRunStatus('');
     const tBuild = performance.now();
     buildInput(true);
     buildFlat();
@@ -817,20 +714,20 @@ async function remesh(): Promise<void> {
   holdLoadPanel(true);
   clearError(errorBox);
   notice(undefined);
-  resetProgress();
+  progress.reset();
   setState('remeshing');
   probe.reset();
   const t0 = performance.now();
   const bound = params.minAngle;
-  startRunStatus();
+  progress.startRunStatus();
   try {
-    const result = await engine.remesh(input.mesh, params, input.bounds.diagonal, (p) => setProgress(p.stage, p.fraction), ac.signal);
+    const result = await engine.remesh(input.mesh, params, input.bounds.diagonal, (p) => progress.setProgress(p.stage, p.fraction), ac.signal);
     const resultAt = performance.now();
     const seconds = (resultAt - t0) / 1000;
     const gap = probe.read();
     if (seq !== loadSeq) return;
-    finishProgress(result.report);
-    endRunStatus(`done in ${seconds.toFixed(2)} s (library ${result.report.seconds.total.toFixed(2)} s)`);
+    progress.finish(result.report);
+    progress.endRunStatus(`done in ${seconds.toFixed(2)} s (library ${result.report.seconds.total.toFixed(2)} s)`);
     const a = await analyzer.analyze(result.mesh, { angles: true });
     if (seq !== loadSeq) return;
     const t1 = performance.now();
@@ -887,9 +784,9 @@ async function remesh(): Promise<void> {
   } catch (e) {
     if (seq !== loadSeq) return;
     const cancelled = (e as { code?: string }).code === 'Cancelled';
-    for (const b of bars.values()) if (b.li.className === 'running') b.li.className = 'failed';
+    progress.fail();
     const after = `after ${((performance.now() - t0) / 1000).toFixed(1)} s`;
-    endRunStatus(cancelled ? `cancelled ${after}` : `failed ${after}`);
+    progress.endRunStatus(cancelled ? `cancelled ${after}` : `failed ${after}`);
     if (cancelled) {
       notice('Remesh cancelled.');
       setState('loaded');
@@ -1042,7 +939,7 @@ window.conformeshPage = {
   lastRemesh,
   lastLoad,
   capabilities: { remesh: engine.canRemesh, flatten: engine.canFlatten },
-  progressLog,
+  progressLog: progress.log,
   renderAll: () => views.forEach((v) => v.renderNow()),
   loadSample,
   selectionState,
