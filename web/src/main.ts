@@ -11,8 +11,9 @@ import { minAnglePerTriangle, type AngleStats, type Bounds, type FeaturePreview 
 import { drawHistogram } from './histogram.ts';
 import { mountingPlateOff } from './plate.ts';
 import { FrameProbe } from './probe.ts';
-import { GROUPS, QUALITY, entryOf, formatValue, reportedStages, reportValues, stageKey, stageLabel, type Unit, type Value } from './quality.ts';
+import { reportedStages, reportValues, type Value } from './quality.ts';
 import { ProgressPanel } from './progress-panel.ts';
+import { exemptCornerPositions, renderExemptList, renderQualityTable } from './report-panel.ts';
 import {
   NEUTRAL,
   cornerMarkers,
@@ -450,60 +451,8 @@ function qualityValues(): Map<string, Value> {
   return v;
 }
 
-/** A value shown in red: the bound missed away from exempt corners, or the topology changed. */
-function isBad(key: string, x: Value): boolean {
-  const bound = output?.bound ?? params.minAngle;
-  if (key === 'minAngleOutsideExempt') return typeof x === 'number' && x < bound - 1e-9;
-  if (key === 'trianglesBelowBoundOutsideExempt') return typeof x === 'number' && x > 0;
-  if (key === 'topologyPreserved') return x === false;
-  return false;
-}
-
 function qualityTable(): void {
-  const table = $('#quality');
-  for (const old of table.querySelectorAll('tbody')) old.remove();
-  const values = qualityValues();
-  const unknown = [...values.keys()].filter((k) => !entryOf(k));
-  for (const { group, title } of GROUPS) {
-    const body = document.createElement('tbody');
-    body.dataset.group = group;
-    const head = document.createElement('tr');
-    head.className = 'group';
-    const th = document.createElement('th');
-    th.colSpan = 2;
-    th.textContent = title;
-    head.append(th);
-    body.append(head);
-    const entries: { key: string; label: string; unit: Unit; hint?: string; known: boolean }[] = QUALITY.filter((e) => e.group === group && values.get(e.key) !== undefined)
-      .map((e) => ({ ...e, known: true }));
-    // a key the library added and the table does not know yet: shown, in words, and flagged
-    if (group === 'pipeline') for (const key of unknown) entries.push({ key, label: stageLabel(key), unit: 'text', known: false });
-    for (const e of entries) {
-      const x = values.get(e.key);
-      const tr = document.createElement('tr');
-      tr.dataset.key = e.key;
-      if (!e.known) tr.dataset.unknown = 'true';
-      if (e.hint) tr.title = e.hint;
-      const name = document.createElement('td');
-      name.textContent = e.label;
-      const value = document.createElement('td');
-      value.textContent = formatValue(e.unit, x);
-      value.dataset.testid = `q-${e.key}`;
-      if (isBad(e.key, x)) value.className = 'bad';
-      tr.append(name, value);
-      body.append(tr);
-    }
-    if (entries.length === 0) {
-      const tr = document.createElement('tr');
-      const td = document.createElement('td');
-      td.colSpan = 2;
-      td.className = 'muted';
-      td.textContent = group === 'input' ? 'load a mesh' : 'press Remesh';
-      tr.append(td);
-      body.append(tr);
-    }
-    table.append(body);
-  }
+  renderQualityTable($('#quality'), qualityValues(), output?.bound ?? params.minAngle);
 }
 
 function histogram(): void {
@@ -511,35 +460,13 @@ function histogram(): void {
 }
 
 // ---------------------------------------------------------------- exempt corners
-/** The list of the report's exempt corners (input corners sharper than the bound). */
 function exemptList(): void {
-  const list = $('#exempt-corners');
-  list.replaceChildren();
-  const corners = output?.result.report.exemptCorners;
-  const note = $('#exempt-note');
-  if (!corners) {
-    note.textContent = input ? 'Remesh to see them.' : '';
-    return;
-  }
-  note.textContent = corners.length
-    ? `${corners.length} input corner${corners.length === 1 ? '' : 's'} below the ${output!.bound}° bound: the triangles touching ${corners.length === 1 ? 'it' : 'them'} cannot meet it. Magenta dots in views 1 and 3.`
-    : `none: every triangle is held to the ${output!.bound}° bound.`;
-  for (const c of corners) {
-    const li = document.createElement('li');
-    li.dataset.vertex = String(c.vertex);
-    li.dataset.outputVertex = String(c.outputVertex);
-    li.dataset.angle = String(c.angle);
-    li.textContent = `input vertex ${c.vertex} (output ${c.outputVertex}): corner of ${c.angle.toFixed(2)}°, ${c.triangles.length} triangle${c.triangles.length === 1 ? '' : 's'} exempt`;
-    list.append(li);
-  }
+  renderExemptList($('#exempt-corners'), $('#exempt-note'), output?.result.report.exemptCorners, output?.bound ?? params.minAngle, !!input);
 }
 
 /** Positions (3 per corner) of the exempt corners' vertices in a mesh. */
 function cornerPositions(mesh: Mesh3, which: 'vertex' | 'outputVertex'): Float64Array {
-  const corners = output?.result.report.exemptCorners ?? [];
-  const out = new Float64Array(3 * corners.length);
-  corners.forEach((c, i) => out.set(mesh.positions.subarray(3 * c[which], 3 * c[which] + 3), 3 * i));
-  return out;
+  return exemptCornerPositions(mesh.positions, output?.result.report.exemptCorners ?? [], which);
 }
 
 // ---------------------------------------------------------------- progress
