@@ -65,7 +65,7 @@ uint32_t mergeCloseJunctions(const EdgeGraph& g, Segmentation& seg, double minLe
   std::vector<uint32_t> valence(g.vertexCount, 0);
   std::vector<double> dist(g.vertexCount, INFINITY);
   std::vector<uint32_t> predEdge(g.vertexCount, kNone), seen;
-  std::vector<uint8_t> changed(g.vertexCount, 0), forbidden(g.vertexCount, 0);
+  std::vector<uint8_t> changed(g.vertexCount, 0);
   std::vector<KindChange> log;
   const auto setKind = [&](uint32_t e, EdgeKind kind) {
     log.push_back({e, seg.edgeKind[e]});
@@ -88,8 +88,8 @@ uint32_t mergeCloseJunctions(const EdgeGraph& g, Segmentation& seg, double minLe
   };
   WedgeScratch scratch;
   const auto wedgeAt = [&](uint32_t v) { return smallestWedge(g, v, [&](uint32_t e) { return mask[e] != 0; }, scratch); };
-  // the shortest path of non-curve edges from u to y (no hairpin; no curve vertex but y on it,
-  // none of `forbidden`), from y back to u; empty when y is out of reach
+  // the shortest path of non-curve edges from u to y (no hairpin; no curve vertex on it but y),
+  // from y back to u; empty when y is out of reach
   const auto pathTo = [&](uint32_t u, uint32_t back0, uint32_t y) {
     using Item = std::pair<double, uint32_t>;
     std::priority_queue<Item, std::vector<Item>, std::greater<Item>> pq;
@@ -103,7 +103,7 @@ uint32_t mergeCloseJunctions(const EdgeGraph& g, Segmentation& seg, double minLe
       for (uint32_t k = g.vertexEdgeStart[x]; k < g.vertexEdgeStart[x + 1]; ++k) {
         const uint32_t e = g.vertexEdgeIds[k];
         const uint32_t z = g.otherVertex(e, x);
-        if (mask[e] || z == u || forbidden[z] || (valence[z] > 0 && z != y)) continue;
+        if (mask[e] || z == u || (valence[z] > 0 && z != y)) continue;
         const uint32_t back = x == u ? back0 : g.otherVertex(predEdge[x], x);
         if (back != kNone && angleBetween(g.positions[back] - g.positions[x], g.positions[z] - g.positions[x]) < kNarrowCutWedge) continue;
         const double nd = d + g.edgeLength(e);
@@ -217,6 +217,16 @@ uint32_t mergeCloseJunctions(const EdgeGraph& g, Segmentation& seg, double minLe
             }
             for (size_t i = 0; i + 1 < np.size(); ++i) setKind(g.findEdge(np[i], np[i + 1]), EdgeKind::Cut);
             check.insert(check.end(), np.begin() + 1, np.end());
+          }
+          // a path from a cut's far end (a corner) may run through a patch beside neither curve:
+          // every patch beside a changed edge is judged, and must be free this pass
+          if (ok) {
+            for (const KindChange& kc : log)
+              for (uint32_t f : g.edgeFaces[kc.edge])
+                if (f != kNone) touched.push_back(seg.facePatch[f]);
+            std::sort(touched.begin(), touched.end());
+            touched.erase(std::unique(touched.begin(), touched.end()), touched.end());
+            for (uint32_t p : touched) ok = ok && !usedPatch[p];
           }
           if (ok && (valence[X] == 0 || valence[X] == 2) && sameDisks(g, seg, mask, touched)) {
             double now = INFINITY;

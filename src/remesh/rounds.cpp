@@ -122,6 +122,7 @@ BestRound meshRounds(const Surface& surf, const RemeshOptions& opt, const Progre
   // first vertices of every round, can be exempt)
   exempt.vertex.resize(best.out.vertexCount(), 0);
   m.samples.cm.curveSamples = std::move(bestCurveSamples);
+  exempt.indexWedges(surf, m.samples);  // the best round's curves: the repair asks which corner owns a triangle
   return best;
 }
 
