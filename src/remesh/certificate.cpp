@@ -40,17 +40,30 @@ bool minAngleBelow(const MeshBuffers& m, size_t t, double boundDeg, double cosBo
 //! How the output's topology differs from the input's ("Euler characteristic 3 vs 2, 1
 //! non-manifold edge"), or "" when it has the input's components, boundary loops and Euler
 
-void ExemptCorners::find(const Surface& surf, const CurveSamples& cs, size_t outVertices, double boundDeg, RemeshReport& rep) {
+void measureCorners(const Surface& surf, double boundDeg, Meshing& m) {
+  const std::vector<double> wedge = F::featureWedgeAngles(surf.g, surf.seg);
+  m.cornerWedgeDeg.resize(wedge.size());
+  m.smallCorner.assign(wedge.size(), 0);
+  for (uint32_t v = 0; v < wedge.size(); ++v) {
+    m.cornerWedgeDeg[v] = wedge[v] * 180.0 / kPi;
+    // the preconditioner's split vertices are no corners of the input
+    m.smallCorner[v] = v < surf.input().vertexCount() && m.cornerWedgeDeg[v] < boundDeg;
+  }
+}
+
+ExemptCorners::ExemptCorners(double bound) : boundDeg(bound), cosBound(dmath::cos(bound * kPi / 180.0)) {}
+
+void ExemptCorners::find(const Surface& surf, const Meshing& m, size_t outVertices, RemeshReport& rep) {
   vertex.assign(outVertices, 0);
   rep.exemptCorners.clear();
-  const std::vector<double> wedge = F::featureWedgeAngles(surf.g, surf.seg);
-  for (uint32_t iv = 0; iv < surf.g.vertexCount; ++iv) {
-    if (iv >= surf.input().vertexCount() || !(wedge[iv] * 180.0 / kPi < boundDeg)) continue;
-    uint32_t s = iv < cs.cm.cornerSample.size() ? cs.cm.cornerSample[iv] : kNone;
+  const F::CurveMesh& cm = m.samples.cm;
+  for (uint32_t iv = 0; iv < m.smallCorner.size(); ++iv) {
+    if (!m.smallCorner[iv]) continue;
+    uint32_t s = iv < cm.cornerSample.size() ? cm.cornerSample[iv] : kNone;
     if (s == kNone || s >= vertex.size() || vertex[s]) continue;
     vertex[s] = 1;
-    wedgeDeg[s] = wedge[iv] * 180.0 / kPi;
-    rep.exemptCorners.push_back({surf.vm.vertexToInput[iv], s, wedge[iv] * 180.0 / kPi, {}});
+    wedgeDeg[s] = m.cornerWedgeDeg[iv];
+    rep.exemptCorners.push_back({surf.vm.vertexToInput[iv], s, m.cornerWedgeDeg[iv], {}});
   }
 }
 
@@ -74,7 +87,7 @@ void ExemptCorners::indexWedges(const Surface& surf, const CurveSamples& cs) {
 // such skinny triangles there, whose angle the input forces (the "seditious edges" of Shewchuk
 // 2002). Where the two curves stop diverging (a long strip between them), an edge across is
 // seen under less and less: not exempt.
-uint32_t ExemptCorners::cornerOf(const MeshBuffers& out, size_t t, double boundDeg) const {
+uint32_t ExemptCorners::cornerOf(const MeshBuffers& out, size_t t) const {
   const uint32_t* tv = &out.triangles[3 * t];
   for (int c = 0; c < 3; ++c)
     if (vertex[tv[c]]) return tv[c];
@@ -93,14 +106,14 @@ uint32_t ExemptCorners::cornerOf(const MeshBuffers& out, size_t t, double boundD
   return kNone;
 }
 
-Verdict judge(const MeshBuffers& out, const std::vector<uint32_t>& triPatch, const ExemptCorners& exempt, double boundDeg) {
-  const double cosBound = dmath::cos(boundDeg * kPi / 180.0), cosCollapsed = dmath::cos(kCollapsedDeg * kPi / 180.0);
+Verdict judge(const MeshBuffers& out, const std::vector<uint32_t>& triPatch, const ExemptCorners& exempt) {
+  const double cosCollapsed = dmath::cos(kCollapsedDeg * kPi / 180.0);
   // bad: below the bound outside exempt corners; collapsed: a corner below kCollapsedDeg (points
   // closer than the lift resolves, e.g. refinement cascading into a small exempt wedge)
   Verdict v;
   for (size_t t = 0; t < out.triangleCount(); ++t) {
     if (minAngleBelow(out, t, kCollapsedDeg, cosCollapsed)) ++v.collapsed;
-    if (minAngleBelow(out, t, boundDeg, cosBound) && exempt.cornerOf(out, t, boundDeg) == kNone) ++v.bad;
+    if (exempt.bad(out, t)) ++v.bad;
   }
   // the same three samples meshed as a triangle by two patches (a corner wedge between two
   // curves that both patches border, closed by one triangle on each side), or a chord both
@@ -111,8 +124,7 @@ Verdict judge(const MeshBuffers& out, const std::vector<uint32_t>& triPatch, con
 }
 
 void requestRefinement(const Verdict& verdict, const MeshBuffers& out, const std::vector<uint32_t>& triPatch,
-                       const ExemptCorners& exempt, double boundDeg, bool keepBoundary, Patches& patches) {
-  const double cosBound = dmath::cos(boundDeg * kPi / 180.0);
+                       const ExemptCorners& exempt, bool keepBoundary, Patches& patches) {
   std::vector<size_t> firstTri(patches.size(), 0);  // each patch's first triangle in out
   for (size_t i = triPatch.size(); i-- > 0;) firstTri[triPatch[i]] = i;
   // A doubled triangle closes a corner wedge of its patch alone: the patch must put a vertex
@@ -146,7 +158,7 @@ void requestRefinement(const Verdict& verdict, const MeshBuffers& out, const std
     if (keepBoundary) w.keepBoundary = true;
   }
   for (size_t t = 0; t < out.triangleCount(); ++t) {
-    if (!minAngleBelow(out, t, boundDeg, cosBound) || exempt.cornerOf(out, t, boundDeg) != kNone) continue;
+    if (!exempt.bad(out, t)) continue;
     PatchWork& w = *patches[triPatch[t]];
     const uint32_t* lt = &w.triangles[3 * (t - firstTri[triPatch[t]])];
     double cx = 0, cy = 0, longest = 0;

@@ -28,20 +28,27 @@ bool minAngleBelow(const MeshBuffers& m, size_t t, double boundDeg, double cosBo
 //! wedge below the bound. Cuts are ours (not features): a small angle where a cut meets a curve
 //! is not exempt.
 struct ExemptCorners {
+  explicit ExemptCorners(double boundDeg);
+  double boundDeg, cosBound;    //!< the angle bound and its cosine
   std::vector<uint8_t> vertex;  //!< per output vertex: an exempt corner (a curve sample)
   //! per curve sample: (exempt corner sample, curve) for each curve through it that ends at an
   //! exempt corner
   std::vector<std::vector<std::pair<uint32_t, uint32_t>>> wedgeCurves;
   std::unordered_map<uint32_t, double> wedgeDeg;  //!< exempt corner sample -> its wedge angle
 
-  //! Find them (once, on the first stitched round of outVertices vertices) and list them in
-  //! rep.exemptCorners.
-  void find(const Surface& surf, const CurveSamples& cs, size_t outVertices, double boundDeg, RemeshReport& rep);
+  //! Find them (once, on the first stitched round of outVertices vertices: the samples of
+  //! m's small corners) and list them in rep.exemptCorners.
+  void find(const Surface& surf, const Meshing& m, size_t outVertices, RemeshReport& rep);
   //! Index the curves through every sample that end at a corner (after the samples change).
   void indexWedges(const Surface& surf, const CurveSamples& cs);
   //! The exempt corner triangle t belongs to, or kNone (see certificate.cpp).
-  uint32_t cornerOf(const MeshBuffers& out, size_t t, double boundDeg) const;
+  uint32_t cornerOf(const MeshBuffers& out, size_t t) const;
+  //! Triangle t is below the bound and owned by no exempt corner.
+  bool bad(const MeshBuffers& out, size_t t) const { return minAngleBelow(out, t, boundDeg, cosBound) && cornerOf(out, t) == kNone; }
 };
+
+//! Meshing::cornerWedgeDeg and smallCorner, once per call (boundDeg: the angle bound).
+void measureCorners(const Surface& surf, double boundDeg, Meshing& m);
 
 //! What a stitched round leaves to do.
 struct Verdict {
@@ -53,11 +60,11 @@ struct Verdict {
 };
 
 //! Judge a stitched round (triPatch: the patch of each triangle).
-Verdict judge(const MeshBuffers& out, const std::vector<uint32_t>& triPatch, const ExemptCorners& exempt, double boundDeg);
+Verdict judge(const MeshBuffers& out, const std::vector<uint32_t>& triPatch, const ExemptCorners& exempt);
 
 //! Ask the patches for what the verdict needs: a required point inside every stitch defect (its
 //! patch then keeps its boundary when keepBoundary), a graded spot at every bad triangle.
 void requestRefinement(const Verdict& verdict, const MeshBuffers& out, const std::vector<uint32_t>& triPatch,
-                       const ExemptCorners& exempt, double boundDeg, bool keepBoundary, Patches& patches);
+                       const ExemptCorners& exempt, bool keepBoundary, Patches& patches);
 
 }  // namespace conformesh::pipeline

@@ -98,8 +98,11 @@ struct CurveSamples {
 struct Meshing {
   Patches patches;
   CurveSamples samples;
-  //! per vertex of the edge graph: an input corner below the angle bound (an exempt corner; its
-  //! sides' triangles are left as the wedge forces them, in the plane as in 3D)
+  //! per vertex of the edge graph: the smallest wedge (degrees) between the input's own feature
+  //! and boundary curves there (features::featureWedgeAngles), and whether it is an input corner
+  //! below the angle bound: an exempt corner, whose sides' triangles are left as the wedge forces
+  //! them, in the plane (mesh_patch.cpp) as in 3D (certificate.h). Measured by measureCorners.
+  std::vector<double> cornerWedgeDeg;
   std::vector<uint8_t> smallCorner;
   double liftSeconds = 0, optimizeSeconds = 0;
 };

@@ -46,10 +46,7 @@ void repairBelowBound(const Surface& surf, const CurveSamples& cs, const ExemptC
   for (uint32_t s : cs.cm.cornerSample)
     if (s < pinned.size()) pinned[s] = 1;
   for (size_t v = 0; v < pinned.size(); ++v) pinned[v] |= exempt.vertex[v];
-  const double cosBound = dmath::cos(opt.minAngleDeg * 3.14159265358979323846 / 180.0);
-  const auto isBad = [&](size_t t) {
-    return minAngleBelow(out, t, opt.minAngleDeg, cosBound) && exempt.cornerOf(out, t, opt.minAngleDeg) == kNone;
-  };
+  const auto isBad = [&](size_t t) { return exempt.bad(out, t); };
   // a repaired star may always be a quarter of the chord tolerance from the input
   const repair::RepairStats rs = repair::relaxBelowBound(out, best.vertexFace, best.triPatch, pinned, surf.graphMesh(),
                                                          surf.seg.facePatch, isBad, opt.minAngleDeg, kRepairRounds,
@@ -86,16 +83,11 @@ RemeshResult run(const MeshBuffers& input, const RemeshOptions& opt, const Progr
   progress.check(Stage::CurveMesh, 0);
   m.samples.cm = F::sampleCurves(surf.g, surf.seg, surf.sizing);
   indexSamples(surf, m.samples);
-  {  // the input's corners below the bound (as certificate.h's ExemptCorners finds them)
-    const std::vector<double> wedge = F::featureWedgeAngles(surf.g, surf.seg);
-    m.smallCorner.assign(surf.g.vertexCount, 0);
-    for (uint32_t v = 0; v < surf.g.vertexCount && v < surf.input().vertexCount(); ++v)
-      m.smallCorner[v] = wedge[v] * 180.0 / 3.14159265358979323846 < opt.minAngleDeg;
-  }
+  measureCorners(surf, opt.minAngleDeg, m);
   rep.seconds.curveMesh = elapsed(clock);
 
   // refine + lift + optimize, re-meshing neighbours of split segments, then the 3D angle certificate
-  ExemptCorners exempt;
+  ExemptCorners exempt(opt.minAngleDeg);
   BestRound best = meshRounds(surf, opt, progress, m, exempt, rep, clock);
   if (best.bad > 0) repairBelowBound(surf, m.samples, exempt, opt, best, rep);  // counted in the stitch's time
   if (opt.forceTopologyDefect) addNonManifoldEdge(best.out, best.vertexFace, exempt.vertex, best.triPatch);

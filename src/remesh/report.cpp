@@ -65,7 +65,7 @@ Status reportOutput(const Surface& surf, const CurveSamples& cs, const MeshBuffe
         rep.exemptCorners[cornerIndex.at(tv[c])].triangles.push_back(uint32_t(t));
       }
     if (!ex) {
-      const uint32_t corner = exempt.cornerOf(out, t, opt.minAngleDeg);
+      const uint32_t corner = exempt.cornerOf(out, t);
       if (corner != kNone) {
         ex = true;
         rep.exemptCorners[cornerIndex.at(corner)].triangles.push_back(uint32_t(t));

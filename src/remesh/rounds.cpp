@@ -78,12 +78,12 @@ BestRound meshRounds(const Surface& surf, const RemeshOptions& opt, const Progre
       outIsBest = false;
     }
     out = stitch(surf, m, triPatch, vertexFace);
-    if (exempt.vertex.empty()) exempt.find(surf, m.samples, out.vertexCount(), opt.minAngleDeg, rep);
+    if (exempt.vertex.empty()) exempt.find(surf, m, out.vertexCount(), rep);
     exempt.vertex.resize(out.vertexCount(), 0);
     exempt.indexWedges(surf, m.samples);
     // A round never wins by trading bad triangles for collapsed ones, and a stitch defect (the
     // surface is not manifold there) is worse than any angle: a round with fewer always wins.
-    const Verdict verdict = judge(out, triPatch, exempt, opt.minAngleDeg);
+    const Verdict verdict = judge(out, triPatch, exempt);
     const size_t defects = verdict.defects();
     if (defects < bestDoubled ||
         (defects == bestDoubled && (verdict.collapsed < bestCollapsed || (verdict.collapsed == bestCollapsed && verdict.bad < bestBad)))) {
@@ -109,7 +109,7 @@ BestRound meshRounds(const Surface& surf, const RemeshOptions& opt, const Progre
     if ((verdict.bad == 0 && defects == 0) || cert >= rounds) break;
     // 3D angle certificate: where a lifted triangle is below the bound, ask for smaller planar
     // triangles there and re-mesh the patch.
-    requestRefinement(verdict, out, triPatch, exempt, opt.minAngleDeg, cert >= opt.maxCertificateRounds, work);
+    requestRefinement(verdict, out, triPatch, exempt, cert >= opt.maxCertificateRounds, work);
     ++rep.certificateRounds;
   }
   if (outIsBest) {
