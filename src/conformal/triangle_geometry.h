@@ -6,13 +6,13 @@
 #pragma once
 
 #include <algorithm>
+#include "core/constants.h"
 #include <cmath>
 
 #include "core/detmath.h"
 
 namespace conformesh::conformal {
 
-constexpr double kPi = 3.14159265358979323846;
 
 //! Angle (radians) opposite the side of length `c`, between the sides `a` and `b` (any order).
 //! Lengths must be positive. Returns pi when c >= a + b and 0 when c <= |a - b| (the limits of

@@ -1,4 +1,5 @@
 #include "features/creases.h"
+#include "core/constants.h"
 
 #include <algorithm>
 #include <cmath>
@@ -10,7 +11,6 @@
 namespace conformesh::features {
 namespace {
 
-constexpr double kPi = 3.14159265358979323846;
 
 // Per candidate end (2·e + 0 at edgeVerts[e][0], 2·e + 1 at edgeVerts[e][1]): the candidate that
 // continues it straightest at that vertex, or kNone. Pairs are matched greedily, smallest turn

@@ -1,4 +1,5 @@
 #include "features/cut_junctions.h"
+#include "core/constants.h"
 
 #include <algorithm>
 #include <cmath>
@@ -12,7 +13,6 @@
 namespace conformesh::features {
 namespace {
 
-constexpr double kPi = 3.14159265358979323846;
 
 // The point at arc length `len` along a vertex path (its last vertex when the path is shorter).
 Vec3 pointAlong(const EdgeGraph& g, const std::vector<uint32_t>& path, double len) {

@@ -1,4 +1,5 @@
 #include "features/segmentation.h"
+#include "core/constants.h"
 #include "features/creases.h"
 #include "features/close_junctions.h"
 #include "features/cut_junctions.h"
@@ -14,7 +15,6 @@
 namespace conformesh::features {
 namespace {
 
-constexpr double kPi = 3.14159265358979323846;
 // Corners joined by a curve shorter than this many junction scales (about the output edge
 // length) are merged where one is a junction of cuts (features/close_junctions.h).
 constexpr double kCloseJunctionFactor = 0.25;

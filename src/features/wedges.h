@@ -6,16 +6,15 @@
 #include <cstdint>
 #include <vector>
 
+#include "core/constants.h"
 #include "features/edge_graph.h"
 
 namespace conformesh::features {
 
-constexpr double kWedgePi = 3.14159265358979323846;
-
 // A cut meeting a curve at a wedge narrower than this makes a corner no mesh can fix (cuts are
 // ours, not features, so such a corner is not exempt); straightenCutEars and the walks of
 // extendDanglingCurves avoid them.
-constexpr double kNarrowCutWedge = 45.0 * kWedgePi / 180.0;
+constexpr double kNarrowCutWedge = 45.0 * kPi / 180.0;
 
 struct WedgeScratch {
   std::vector<uint32_t> star, parent;
@@ -36,7 +35,7 @@ inline double smallestWedge(const EdgeGraph& g, uint32_t v, const Separates& sep
     for (uint32_t f : g.edgeFaces[e])
       if (f != kNone) w.star.push_back(f);
   }
-  if (!touched) return 2 * kWedgePi;
+  if (!touched) return 2 * kPi;
   std::sort(w.star.begin(), w.star.end());
   w.star.erase(std::unique(w.star.begin(), w.star.end()), w.star.end());
   w.parent.resize(w.star.size());
@@ -57,7 +56,7 @@ inline double smallestWedge(const EdgeGraph& g, uint32_t v, const Separates& sep
     for (int c = 0; c < 3; ++c)
       if (fv[c] == v) w.sum[find(i)] += g.cornerAngle(w.star[i], c);
   }
-  double m = 2 * kWedgePi;
+  double m = 2 * kPi;
   for (uint32_t i = 0; i < w.star.size(); ++i)
     if (find(i) == i) m = std::min(m, w.sum[i]);
   return m;

@@ -1,4 +1,5 @@
 #include "mesh/precondition.h"
+#include "core/constants.h"
 #include "core/detmath.h"
 
 #include <algorithm>
@@ -12,7 +13,6 @@ namespace conformesh {
 namespace {
 
 constexpr uint32_t kNo = 0xffffffffu;
-constexpr double kPi = 3.14159265358979323846;
 
 uint64_t edgeKey(uint32_t a, uint32_t b) { return a < b ? (uint64_t(a) << 32 | b) : (uint64_t(b) << 32 | a); }
 

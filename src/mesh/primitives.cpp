@@ -1,4 +1,5 @@
 #include "mesh/primitives.h"
+#include "core/constants.h"
 #include "core/detmath.h"
 
 #include <array>
@@ -10,7 +11,6 @@
 namespace conformesh {
 
 namespace {
-constexpr double kPi = 3.14159265358979323846;
 
 void checkArg(bool ok, const std::string& what) {
   if (!ok) fail(Code::InvalidArgument, Stage::Api, what);

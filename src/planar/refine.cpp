@@ -1,5 +1,6 @@
 // Planar Delaunay refinement; see refine.h.
 #include "planar/refine.h"
+#include "core/constants.h"
 
 #include <algorithm>
 #include <chrono>
@@ -16,7 +17,6 @@
 namespace conformesh::planar {
 namespace {
 
-constexpr double kPi = 3.14159265358979323846;
 
 struct BadEntry {
   uint32_t t, a, b, c;

@@ -1,4 +1,5 @@
 #include "quality/metrics.h"
+#include "core/constants.h"
 #include "core/detmath.h"
 #include "core/triangle_corner.h"
 #include "core/union_find.h"
@@ -11,7 +12,6 @@ namespace conformesh::quality {
 
 namespace {
 
-constexpr double kPi = 3.14159265358979323846;
 constexpr double kDeg = 180.0 / kPi;
 
 inline Vec3 vertex(const MeshBuffers& m, uint32_t i) {

@@ -1,4 +1,5 @@
 #include "remesh/certificate.h"
+#include "core/constants.h"
 
 #include <cmath>
 
@@ -9,7 +10,6 @@
 namespace conformesh::pipeline {
 namespace {
 
-constexpr double kPi = 3.14159265358979323846;
 
 }  // namespace
 

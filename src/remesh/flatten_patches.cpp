@@ -1,4 +1,5 @@
 #include "remesh/flatten_patches.h"
+#include "core/constants.h"
 
 #include <algorithm>
 #include <cmath>
@@ -8,7 +9,6 @@
 namespace conformesh::pipeline {
 namespace {
 
-constexpr double kPi = 3.14159265358979323846;
 // Patches with fewer input faces are not split further. A single triangle always develops
 // isometrically, so splitting down to small patches beats the round-disk fallback, whose
 // distortion on a small curved patch leaves triangles below the bound (docs/decisions/0009).

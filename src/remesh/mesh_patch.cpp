@@ -1,4 +1,5 @@
 #include "remesh/mesh_patch.h"
+#include "core/constants.h"
 
 #include <algorithm>
 #include <array>
@@ -17,7 +18,6 @@ namespace {
 
 //! x² as one product (std::pow(x, 2) goes through libm in some builds).
 inline double sq(double x) { return x * x; }
-constexpr double kPi = 3.14159265358979323846;
 // Degrees added to the angle bound for the planar refinement (see meshPatch).
 constexpr double kPlanarAngleMargin = 2.0;
 // Angle (degrees) at the new vertex of the triangle an off-center (Üngör 2009) makes with the

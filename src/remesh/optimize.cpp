@@ -1,4 +1,5 @@
 #include "remesh/optimize.h"
+#include "core/constants.h"
 
 #include <algorithm>
 #include <array>
@@ -48,7 +49,7 @@ double cornerDeg(const Corner& k) { return ((k.cr == 0 && k.dt == 0) ? 0.0 : dma
 // other octants by symmetry; P the polynomial of Abramowitz–Stegun 4.4.49 (Hastings 1955),
 // |error| <= 2e-8 rad (1.2e-6 degrees; optimize.h promises 1e-4).
 double cornerDegApprox(const Corner& k) {
-  constexpr double kHalfPi = 1.57079632679489661923, kPi = 3.14159265358979323846;
+  constexpr double kHalfPi = 1.57079632679489661923;
   const double c = k.cr, d = std::abs(k.dt);
   const bool steep = c > d;
   const double z = steep ? d / c : c / d, z2 = z * z;

@@ -1,4 +1,5 @@
 #include "remesh/repair.h"
+#include "core/constants.h"
 
 #include <algorithm>
 #include <cmath>
@@ -96,7 +97,7 @@ class Repairer {
         const double a = d * 0.78539816339744830962;
         cand.push_back(p0 + e1 * (step * shortest * dmath::cos(a)) + e2 * (step * shortest * dmath::sin(a)));
       }
-    const double cosTurn = dmath::cos(kMaxNormalTurnDeg * 3.14159265358979323846 / 180.0);
+    const double cosTurn = dmath::cos(kMaxNormalTurnDeg * kPi / 180.0);
     const double devLimit = std::max({dev0, kDeviationSlack * shortest, deviationFloor_});
     double best = room ? deficit0 - 1e-9 : min0 + 1e-9;
     const double floor = std::min(min0, bound_);

@@ -1,4 +1,5 @@
 #include "remesh/report.h"
+#include "core/constants.h"
 
 #include <algorithm>
 #include <cmath>
@@ -10,7 +11,6 @@
 namespace conformesh::pipeline {
 namespace {
 
-constexpr double kPi = 3.14159265358979323846;
 
 //! How the output's topology differs from the input's ("Euler characteristic 3 vs 2, 1
 //! non-manifold edge"), or "" when it has the input's components, boundary loops and Euler

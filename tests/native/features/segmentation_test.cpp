@@ -1,4 +1,5 @@
 #include <doctest/doctest.h>
+#include "core/constants.h"
 
 #include <algorithm>
 #include <cmath>
@@ -21,7 +22,6 @@ using namespace conformesh;
 using namespace conformesh::features;
 
 namespace {
-constexpr double kPi = 3.14159265358979323846;
 uint32_t countCorners(const Segmentation& s, uint8_t kind) {
   return uint32_t(std::count(s.vertexCorner.begin(), s.vertexCorner.end(), kind));
 }

@@ -1,4 +1,5 @@
 #include <doctest/doctest.h>
+#include "core/constants.h"
 
 #include <algorithm>
 #include <cmath>
@@ -11,7 +12,6 @@
 using namespace conformesh;
 
 namespace {
-constexpr double kPi = 3.14159265358979323846;
 
 // A flat regular n-gon of radius 1 fan-triangulated from vertex 0: needles along the fan.
 MeshBuffers needleFan(int n) {

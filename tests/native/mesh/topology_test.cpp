@@ -1,4 +1,5 @@
 #include <doctest/doctest.h>
+#include "core/constants.h"
 
 #include <cmath>
 
@@ -9,7 +10,6 @@
 using namespace conformesh;
 
 namespace {
-constexpr double kPi = 3.14159265358979323846;
 
 MeshBuffers disjointUnion(const MeshBuffers& a, const MeshBuffers& b, double shiftX) {
   MeshBuffers m = a;
