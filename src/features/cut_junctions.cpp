@@ -289,7 +289,7 @@ uint32_t improveCutJunctions(const EdgeGraph& g, Segmentation& seg, double scale
   return total;
 }
 
-uint32_t straightenCutEars(const EdgeGraph& g, Segmentation& seg) {
+uint32_t straightenCutEars(const EdgeGraph& g, Segmentation& seg, const std::vector<uint32_t>& region) {
   const double kEar = kNarrowCutWedge;  // wedges below this are candidates
   const double kGain = 1.0 * kPi / 180.0;  // a move must raise the smallest wedge by this much
   constexpr int kPasses = 8;
@@ -327,14 +327,19 @@ uint32_t straightenCutEars(const EdgeGraph& g, Segmentation& seg) {
     return patchesAreDisks(g, seg, touched);
   };
   std::vector<uint32_t> rim, rimEdges, toggled;
+  // in face order, as the scan of the whole mesh: the moves depend on their order
+  std::vector<uint32_t> faces(region);
+  std::sort(faces.begin(), faces.end());
+  const size_t scanned = region.empty() ? g.faceCount : faces.size();
   uint32_t total = 0;
   for (int pass = 0; pass < kPasses; ++pass) {
     uint32_t moved = 0;
-    for (uint32_t f0 = 0; f0 < g.faceCount; ++f0)
+    for (size_t i0 = 0; i0 < scanned; ++i0)
       for (int c0 = 0; c0 < 3; ++c0)
         for (int side = 0; side < 2; ++side) {
           // the wedge at v from the cut edge v-a, turning away from it face by face until the
           // next curve edge v-c; rim: a, ..., c (the far vertices of the wedge's faces)
+          const uint32_t f0 = region.empty() ? uint32_t(i0) : faces[i0];
           const uint32_t v = g.faces[f0][c0], a = g.faces[f0][(c0 + 1 + side) % 3];
           const uint32_t ea = g.findEdge(v, a);
           if (ea == kNone || seg.edgeKind[ea] != EdgeKind::Cut) continue;

@@ -25,7 +25,9 @@ uint32_t improveCutJunctions(const EdgeGraph& g, Segmentation& seg, double scale
 //! smallest wedge at the vertex and along the rim grows; every patch must stay a disk (else all
 //! moves are undone). Cuts follow input edges, so at the scale of one input edge they can
 //! zigzag: the patch there has a corner no mesh can give better angles, and the 3D certificate
-//! cannot refine it away. Returns the number of moves.
-uint32_t straightenCutEars(const EdgeGraph& g, Segmentation& seg);
+//! cannot refine it away. Returns the number of moves. `region` (input faces; empty: all): only
+//! wedges in it are tried (splitPatch passes the split patch, whose new cuts lie in it, so a
+//! split costs the patch's size, not the mesh's).
+uint32_t straightenCutEars(const EdgeGraph& g, Segmentation& seg, const std::vector<uint32_t>& region = {});
 
 }  // namespace conformesh::features

@@ -499,7 +499,17 @@ bool splitPatch(const EdgeGraph& g, Segmentation& seg, uint32_t p, uint32_t part
   rebuildCurves(g, seg);
   improveCutJunctions(g, seg, seg.junctionScale, region);
   mergeCloseJunctions(g, seg, kCloseJunctionFactor * seg.junctionScale, region);
-  straightenCutEars(g, seg);
+  // Straightening the new cuts may prune a branch of them, and so join two of the parts again:
+  // the split would be undone (and redone at the next flattening, without end), so such a
+  // straightening is dropped.
+  const std::vector<EdgeKind> split = seg.edgeKind;
+  const uint32_t cutEdges = seg.cutEdgeCount;
+  const size_t patchCount = seg.patches.size();
+  if (straightenCutEars(g, seg, region) > 0 && seg.patches.size() < patchCount) {
+    seg.edgeKind = split;
+    seg.cutEdgeCount = cutEdges;
+    rebuildCurves(g, seg);
+  }
   return true;
 }
 

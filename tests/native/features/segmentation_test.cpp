@@ -386,6 +386,21 @@ TEST_CASE("features: straightenCutEars moves a cut across a one-face wedge below
   rebuildCurves(g, s);
   REQUIRE(s.patches.size() == 2);
   Segmentation kinked = s;
+  // a region: only wedges whose faces are in it are tried (the ear is the face at the kink)
+  {
+    const uint32_t kink = at(1.5, 0.5);
+    std::vector<uint32_t> away, near;
+    for (uint32_t f = 0; f < g.faceCount; ++f) {
+      const bool atKink = g.faces[f][0] == kink || g.faces[f][1] == kink || g.faces[f][2] == kink;
+      (atKink ? near : away).push_back(f);
+    }
+    Segmentation elsewhere = kinked;
+    CHECK(straightenCutEars(g, elsewhere, away) == 0);
+    CHECK(elsewhere.edgeKind == kinked.edgeKind);
+    Segmentation there = kinked;
+    CHECK(straightenCutEars(g, there, near) == 1);
+    CHECK(there.edgeKind[g.findEdge(at(1, 0.5), at(1, 0.25))] == EdgeKind::Cut);
+  }
   CHECK(straightenCutEars(g, s) == 1);
   CHECK(s.edgeKind[g.findEdge(at(1, 0.5), at(1.5, 0.5))] == EdgeKind::None);
   CHECK(s.edgeKind[g.findEdge(at(1.5, 0.5), at(1, 0.25))] == EdgeKind::None);
