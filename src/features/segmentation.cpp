@@ -20,18 +20,39 @@ namespace {
 constexpr double kCloseJunctionFactor = 0.25;
 
 // Geodesic Voronoi partition of the face set `region` (Dijkstra on the dual graph, centroid
-// distances, never crossing a curve edge) with k farthest-point seeds. `local` maps input face ->
-// index in region (kNone outside). Returns a label in [0, k) per region face.
-std::vector<uint32_t> voronoiPartition(const EdgeGraph& g, const std::vector<uint8_t>& mask,
-                                       const std::vector<uint32_t>& region,
-                                       const std::vector<uint32_t>& local, uint32_t k) {
-  const uint32_t n = uint32_t(region.size());
-  std::vector<double> dist(n, INFINITY);
-  std::vector<uint32_t> label(n, kNone);
-  std::vector<Vec3> centroid(n);
-  for (uint32_t i = 0; i < n; ++i) centroid[i] = g.faceCentroid(region[i]);
-  using Item = std::pair<double, uint32_t>;
-  auto run = [&](uint32_t seed, uint32_t lab) {
+// distances, never crossing a curve edge) with farthest-point seeds, one seed at a time: the
+// partition with k seeds is the one with k - 1 updated by the k-th seed's Dijkstra (only faces
+// closer to it change), so trying k = 2, 3, ... costs one partition, not one per k. `local` maps
+// input face -> index in region (kNone outside); `label` is in [0, seeds) per region face.
+struct VoronoiSeeds {
+  const EdgeGraph& g;
+  const std::vector<uint8_t>& mask;
+  const std::vector<uint32_t>& region;
+  const std::vector<uint32_t>& local;
+  std::vector<double> dist;
+  std::vector<uint32_t> label;
+  std::vector<Vec3> centroid;
+  uint32_t seeds = 0;
+  uint32_t next = kNone;  // the next seed: the face farthest from the seeds so far
+
+  VoronoiSeeds(const EdgeGraph& g_, const std::vector<uint8_t>& m, const std::vector<uint32_t>& r,
+               const std::vector<uint32_t>& l)
+      : g(g_), mask(m), region(r), local(l), dist(r.size(), INFINITY), label(r.size(), kNone), centroid(r.size()) {
+    for (uint32_t i = 0; i < region.size(); ++i) centroid[i] = g.faceCentroid(region[i]);
+    if (region.empty()) return;
+    // first seed: farthest from region[0]
+    run(0, 0);
+    next = uint32_t(std::max_element(dist.begin(), dist.end(),
+                                     [](double a, double b) {
+                                       return (std::isinf(a) ? -1.0 : a) < (std::isinf(b) ? -1.0 : b);
+                                     }) - dist.begin());
+    std::fill(dist.begin(), dist.end(), INFINITY);
+    std::fill(label.begin(), label.end(), kNone);
+  }
+
+  // incremental multi-source Dijkstra: only faces closer to the new seed change
+  void run(uint32_t seed, uint32_t lab) {
+    using Item = std::pair<double, uint32_t>;
     std::priority_queue<Item, std::vector<Item>, std::greater<Item>> pq;
     dist[seed] = 0;
     label[seed] = lab;
@@ -56,26 +77,20 @@ std::vector<uint32_t> voronoiPartition(const EdgeGraph& g, const std::vector<uin
         }
       }
     }
-  };
-  // first seed: farthest from region[0]
-  run(0, 0);
-  uint32_t seed = uint32_t(std::max_element(dist.begin(), dist.end(),
-                                            [](double a, double b) {
-                                              return (std::isinf(a) ? -1.0 : a) < (std::isinf(b) ? -1.0 : b);
-                                            }) - dist.begin());
-  std::fill(dist.begin(), dist.end(), INFINITY);
-  std::fill(label.begin(), label.end(), kNone);
-  for (uint32_t s = 0; s < k; ++s) {
-    run(seed, s);  // incremental multi-source Dijkstra: only faces closer to the new seed change
-    double best = -1;
-    uint32_t next = kNone;
-    for (uint32_t i = 0; i < n; ++i)
-      if (dist[i] > best) best = dist[i], next = i;
-    if (next == kNone || best <= 0) break;
-    seed = next;
   }
-  return label;
-}
+
+  // Add seeds until there are k (fewer when every face is a seed's or unreachable).
+  void growTo(uint32_t k) {
+    while (seeds < k && next != kNone) {
+      run(next, seeds++);
+      double best = -1;
+      next = kNone;
+      for (uint32_t i = 0; i < dist.size(); ++i)
+        if (dist[i] > best) best = dist[i], next = i;
+      if (best <= 0) next = kNone;
+    }
+  }
+};
 
 struct Cutter {
   const EdgeGraph& g;
@@ -120,8 +135,10 @@ struct Cutter {
     const uint32_t maxK = std::min<uint32_t>(8, uint32_t(region.size()));
     std::vector<uint32_t> label, cut;
     std::vector<std::vector<uint32_t>> parts;
+    VoronoiSeeds voronoi(g, mask, region, local);  // the cuts tried are undone: the mask it sees stays
     for (uint32_t k = std::min(minK, maxK); k <= maxK; ++k) {
-      label = voronoiPartition(g, mask, region, local, k);
+      voronoi.growTo(k);
+      label = voronoi.label;
       cut = borders(region, label);
       parts = groups(region, label, k);
       for (uint32_t e : cut) mask[e] = 1;
