@@ -120,7 +120,9 @@ struct HausdorffOptions {
 };
 
 //! The points a Hausdorff distance is measured from on mesh m: every referenced vertex (in index
-//! order), then `count` area-weighted random points, triangle by triangle (the floor of each
+//! order); with count > 0 the midpoints of the boundary edges and of the edges bending by more
+//! than 20° (once each, in the order of the sorted vertex pairs) and `count` area-weighted random
+//! points, triangle by triangle (the floor of each
 //! triangle's expected count plus a random rounding; uniform in the triangle, Osada et al. 2002),
 //! from a SplitMix64 stream seeded with `seed`: the same points on every platform.
 std::vector<Vec3> surfaceSamples(const MeshBuffers& m, size_t count, uint64_t seed);
