@@ -159,6 +159,8 @@ val remeshJs(val positions, val triangles, val uvs, val attributes, val vertexSi
     o.targetEdgeLengthRel = bindings::numberOption(options, "targetEdgeLengthRel", o.targetEdgeLengthRel, st, 0);
     o.chordTolerance = bindings::numberOption(options, "chordTolerance", o.chordTolerance, st);
     o.chordToleranceRel = bindings::numberOption(options, "chordToleranceRel", o.chordToleranceRel, st, 0);
+    o.maxError = bindings::numberOption(options, "maxError", o.maxError, st, 0);
+    o.maxErrorRel = bindings::numberOption(options, "maxErrorRel", o.maxErrorRel, st, 0);
     o.gradation = bindings::numberOption(options, "gradation", o.gradation, st, 1);
     o.minEdgeLength = bindings::numberOption(options, "minEdgeLength", o.minEdgeLength, st);
     o.maxEdgeLength = bindings::numberOption(options, "maxEdgeLength", o.maxEdgeLength, st);

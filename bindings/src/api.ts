@@ -196,6 +196,8 @@ const remeshKeys: (keyof RemeshOptions)[] = [
   'targetEdgeLengthRel',
   'chordTolerance',
   'chordToleranceRel',
+  'maxError',
+  'maxErrorRel',
   'gradation',
   'minEdgeLength',
   'maxEdgeLength',

@@ -403,6 +403,15 @@ const commands: Record<string, Command> = {
         help: "chord deviation bound of the curvature sizing, in the input's units; < 0: 0.001 times the diagonal; 0: no curvature sizing",
         default: -1,
       },
+      {
+        name: '--max-error',
+        value: 'D',
+        help:
+          "error-driven remeshing: the largest Hausdorff distance to the input, in the input's units; sizes grow as large " +
+          'as it allows, every sharp edge is a crease (the edge length then only scales the cuts and the smallest edge); 0: off',
+        default: 0,
+      },
+      { name: '--max-error-rel', value: 'R', help: '--max-error as a fraction of the bounding-box diagonal; 0: off', default: 0 },
       { name: '--boundary', value: 'free|corners|circle', help: "the boundary condition each patch's flattening tries first", default: 'free' },
       { name: '--max-triangles', value: 'N', help: 'fail with TooLarge when the output would have more triangles', default: 32 * 2 ** 20 },
       { name: '--max-vertices', value: 'N', help: 'fail with TooLarge when the output would have more vertices', default: 16 * 2 ** 20 },
@@ -430,6 +439,8 @@ const commands: Record<string, Command> = {
       if (args.positional.length !== 1) throw new ConformeshError('InvalidArgument', 'api', 'remesh needs exactly one input file');
       if (args.flags.has('--edge-length') && args.flags.has('--edge-length-rel'))
         throw new ConformeshError('InvalidArgument', 'api', 'give --edge-length or --edge-length-rel, not both');
+      if (args.flags.has('--max-error') && args.flags.has('--max-error-rel'))
+        throw new ConformeshError('InvalidArgument', 'api', 'give --max-error or --max-error-rel, not both');
       const options = {
         minAngle: numberFlag(args, '--min-angle'),
         targetEdgeLength: numberFlag(args, '--edge-length'),
@@ -438,6 +449,8 @@ const commands: Record<string, Command> = {
         minFeatureLength: numberFlag(args, '--min-feature-length'),
         minPatchWidth: numberFlag(args, '--min-patch-width'),
         chordTolerance: numberFlag(args, '--chord-tol'),
+        maxError: numberFlag(args, '--max-error'),
+        maxErrorRel: numberFlag(args, '--max-error-rel'),
         computeHausdorff: !args.flags.has('--no-hausdorff'),
         optimize: !args.flags.has('--no-optimize'),
         attributes: !args.flags.has('--no-attributes'),

@@ -301,6 +301,16 @@ export interface RemeshOptions {
   chordTolerance?: number;
   /** Default 1e-3. */
   chordToleranceRel?: number;
+  /**
+   * Error-driven remeshing: the largest two-sided Hausdorff distance to the input (absolute when
+   * > 0, else maxErrorRel × diagonal when > 0; both 0, the default: off). Sizes grow as large as it
+   * allows and every sharp edge is a crease (minFeatureLength defaults to 0); the target edge
+   * length then only scales the cuts and the smallest edge.
+   * The report's hausdorffRel is within it, else the call fails with IterationLimit.
+   */
+  maxError?: number;
+  /** maxError as a fraction of the bounding-box diagonal; default 0 (off). */
+  maxErrorRel?: number;
   /** Neighbouring edge length ratio bound (> 1); default 1.5. */
   gradation?: number;
   /** Edge length clamps (absolute; < 0: target/10 and target). */

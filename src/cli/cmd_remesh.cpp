@@ -116,6 +116,12 @@ std::vector<Flag> flags() {
        "chord deviation bound of the curvature sizing, in the input's units; < 0: " + num(d.chordToleranceRel) +
            " times the diagonal; 0: no curvature sizing",
        num(d.chordTolerance)},
+      {"--max-error", "D",
+       "error-driven remeshing: the largest Hausdorff distance to the input, in the input's units; sizes grow "
+       "as large as it allows, every sharp edge is a crease (the edge length then only scales the cuts and the "
+       "smallest edge); 0: off",
+       num(d.maxError)},
+      {"--max-error-rel", "R", "--max-error as a fraction of the bounding-box diagonal; 0: off", num(d.maxErrorRel)},
       {"--boundary", "free|corners|circle", "the boundary condition each patch's flattening tries first",
        boundaryFlagValue(d.boundary)},
       {"--max-triangles", "N", "fail with TooLarge when the output would have more triangles",
@@ -153,6 +159,10 @@ int run(const std::vector<std::string>& argv) {
     opt.minFeatureLength = args.number("--min-feature-length", opt.minFeatureLength);
     opt.minPatchWidth = args.number("--min-patch-width", opt.minPatchWidth);
     opt.chordTolerance = args.number("--chord-tol", opt.chordTolerance);
+    if (args.has("--max-error") && args.has("--max-error-rel"))
+      fail(Code::InvalidArgument, Stage::Api, "give --max-error or --max-error-rel, not both");
+    opt.maxError = args.number("--max-error", opt.maxError);
+    opt.maxErrorRel = args.number("--max-error-rel", opt.maxErrorRel);
     opt.computeHausdorff = !args.has("--no-hausdorff");
     opt.optimize = !args.has("--no-optimize");
     opt.carryAttributes = !args.has("--no-attributes");

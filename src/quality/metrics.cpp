@@ -464,7 +464,7 @@ std::vector<Vec3> surfaceSamples(const MeshBuffers& m, size_t count, uint64_t se
     }
   }
   std::sort(edges.begin(), edges.end());
-  const double creaseCos = std::cos(kCreaseMidpointDeg * kPi / 180.0);
+  const double creaseCos = dmath::cos(kCreaseMidpointDeg / kDeg);
   for (size_t i = 0; i < edges.size();) {
     size_t j = i + 1;
     while (j < edges.size() && edges[j].first == edges[i].first) ++j;

@@ -18,6 +18,9 @@ constexpr double kMinFeatureFactor = 2.0;
 // Input edges longer than this times the target edge length are split before segmentation, so
 // cuts along input edges are not sawtooths of needle edges (mesh/precondition.h).
 constexpr double kPreconditionEdgeFactor = 2.0;
+// Error-driven remeshing: the largest edge, as a fraction of the diagonal, where the surface is
+// flat (no chord error bounds it there; ten edges across the whole object).
+constexpr double kErrorDrivenMaxSizeRel = 0.1;
 
 }  // namespace
 
@@ -28,6 +31,9 @@ void checkOptions(const RemeshOptions& opt) {
   if (opt.optimizeIterations < 0 || opt.optimizeIterations > 1000)
     fail(Code::InvalidArgument, Stage::Api, "optimizeIterations must be in [0, 1000]");
   if (!(opt.optimizeTolerance >= 0)) fail(Code::InvalidArgument, Stage::Api, "optimizeTolerance must be >= 0");
+  if (!(opt.maxError >= 0 && opt.maxError < INFINITY)) fail(Code::InvalidArgument, Stage::Api, "maxError must be finite and >= 0");
+  if (!(opt.maxErrorRel >= 0 && opt.maxErrorRel < INFINITY))
+    fail(Code::InvalidArgument, Stage::Api, "maxErrorRel must be finite and >= 0");
 }
 
 Surface prepareSurface(ValidatedMesh vm, const MeshBuffers& input, const RemeshOptions& opt, const Progress& progress,
@@ -44,12 +50,13 @@ Surface prepareSurface(ValidatedMesh vm, const MeshBuffers& input, const RemeshO
       fail(Code::InvalidArgument, Stage::Segment, "a feature edge refers to a vertex out of range");
     userFeatures.push_back({surf.vm.inputToVertex[e[0]], surf.vm.inputToVertex[e[1]]});
   }
-  double target = 0, area = 0;
+  double target = 0, area = 0, diagonal = 0;
   {  // the target edge length (cut junctions are judged at about it)
     double lo[3] = {INFINITY, INFINITY, INFINITY}, hi[3] = {-INFINITY, -INFINITY, -INFINITY};
     for (size_t v = 0; v < in.vertexCount(); ++v)
       for (int k = 0; k < 3; ++k) lo[k] = std::min(lo[k], in.positions[3 * v + k]), hi[k] = std::max(hi[k], in.positions[3 * v + k]);
-    target = opt.targetEdgeLength > 0 ? opt.targetEdgeLength : opt.targetEdgeLengthRel * dmath::hypot(hi[0] - lo[0], hi[1] - lo[1], hi[2] - lo[2]);
+    diagonal = dmath::hypot(hi[0] - lo[0], hi[1] - lo[1], hi[2] - lo[2]);
+    target = opt.targetEdgeLength > 0 ? opt.targetEdgeLength : opt.targetEdgeLengthRel * diagonal;
     for (size_t f = 0; f < in.triangleCount(); ++f) {
       const uint32_t* t = &in.triangles[3 * f];
       F::Vec3 a{in.positions[3 * t[0]], in.positions[3 * t[0] + 1], in.positions[3 * t[0] + 2]};
@@ -61,7 +68,10 @@ Surface prepareSurface(ValidatedMesh vm, const MeshBuffers& input, const RemeshO
   // over the limits already with the target alone: TooLarge before any heavy work
   if (target > 0) checkOutputEstimate(estimateFromTarget(area, target, in.triangleCount()), opt);
   fo.junctionScale = target;
-  fo.minFeatureLength = opt.minFeatureLength >= 0 ? opt.minFeatureLength : kMinFeatureFactor * target;
+  // error-driven, every sharp edge is kept unless asked otherwise: the output spanning a dropped
+  // crease deviates from it by the crease's own height, whatever the sizes
+  const bool errorDriven = opt.maxError > 0 || opt.maxErrorRel > 0;
+  fo.minFeatureLength = opt.minFeatureLength >= 0 ? opt.minFeatureLength : errorDriven ? 0.0 : kMinFeatureFactor * target;
   // strips narrower than half the smallest edge the sizing allows (its minLength) are merged
   // into a neighbour (features/segmentation.h)
   fo.minPatchWidth = opt.minPatchWidth >= 0 ? opt.minPatchWidth : 0.5 * (opt.minEdgeLength > 0 ? opt.minEdgeLength : 0.1 * target);
@@ -119,6 +129,13 @@ Surface prepareSurface(ValidatedMesh vm, const MeshBuffers& input, const RemeshO
   so.gradation = opt.gradation;
   so.minEdgeLength = opt.minEdgeLength;
   so.maxEdgeLength = opt.maxEdgeLength;
+  if (errorDriven) {
+    // error-driven (remesh/max_error.h): the chord tolerance and the curvature set the sizes, up
+    // to a tenth of the diagonal where the surface is flat; the target keeps the smallest edge
+    so.targetEdgeLength = kErrorDrivenMaxSizeRel * diagonal;
+    so.maxEdgeLength = opt.maxEdgeLength > 0 ? opt.maxEdgeLength : so.targetEdgeLength;
+    so.minEdgeLength = opt.minEdgeLength > 0 ? opt.minEdgeLength : 0.1 * target;
+  }
   so.surfaceKappa = std::move(surfaceKappa);
   if (surf.pre.splits > 0) so.firstSplitVertex = uint32_t(in.vertexCount());
   if (!opt.vertexSizing.empty()) {

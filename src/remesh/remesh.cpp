@@ -12,6 +12,7 @@
 #include "remesh/curve_samples.h"
 #include "remesh/flatten_patches.h"
 #include "remesh/limits.h"
+#include "remesh/max_error.h"
 #include "remesh/pipeline.h"
 #include "remesh/prepare.h"
 #include "remesh/repair.h"
@@ -143,7 +144,13 @@ RemeshResult remesh(const MeshBuffers& input, const RemeshOptions& options, Prog
       withSeams = options;
       withSeams.featureEdges.insert(withSeams.featureEdges.end(), seams.begin(), seams.end());
     }
-    r = run(input, seams.empty() ? options : withSeams, progress);
+    const RemeshOptions& opt = seams.empty() ? options : withSeams;
+    if (errorDriven(opt)) {
+      checkOptions(opt);
+      r = remeshWithinError(input, opt, [&](const RemeshOptions& o) { return run(input, o, progress); });
+    } else {
+      r = run(input, opt, progress);
+    }
     r.report.seamEdges = seams.size();
   } catch (const Error& e) {
     r = RemeshResult{};

@@ -30,6 +30,15 @@ struct RemeshOptions {
   //! diagonal; 0 switches curvature sizing off).
   double chordTolerance = -1.0;
   double chordToleranceRel = 1e-3;
+  //! Error-driven remeshing: the largest two-sided Hausdorff distance allowed between the output
+  //! and the input (absolute when > 0, else maxErrorRel · diagonal when > 0; both 0, the default:
+  //! off). When on, the sizes grow as large as the chord error, the curvature and the angle bound
+  //! allow (the target edge length still sets the scale of the cuts and the smallest edge),
+  //! chordTolerance is chosen by remesh, minFeatureLength's default is 0 (every sharp edge is
+  //! kept: spanning a crease costs its height), and the output's measured Hausdorff distance is
+  //! at most this, else IterationLimit (remesh/max_error.h).
+  double maxError = 0.0;
+  double maxErrorRel = 0.0;
   //! Neighbouring edge length ratio bound (> 1).
   double gradation = 1.5;
   //! Edge length clamps (absolute; < 0: target/10 and target).
@@ -44,8 +53,8 @@ struct RemeshOptions {
   //! Sharp edges are creases only in chains (straight continuations) that stand out of their
   //! neighbourhood and are at least this long, or that stand out strongly or bridge two curves
   //! (features/creases.h): the facets of a coarse or noisy surface are not creases (absolute;
-  //! < 0: twice the target edge length; 0: keep every sharp edge). User feature edges are always
-  //! kept. The report counts the dropped edges.
+  //! < 0: twice the target edge length, 0 when error-driven; 0: keep every sharp edge). User
+  //! feature edges are always kept. The report counts the dropped edges.
   double minFeatureLength = -1.0;
   //! Patches narrower than this (twice their area over their perimeter) are merged into a
   //! neighbour by dropping the sharp edges between them; the strip's other border keeps the

@@ -2,6 +2,7 @@
 // corners, progress and cancel (direct and in workers), worker vs direct, heap flat.
 import { afterAll, describe, expect, it } from 'vitest';
 import { ConformeshError, createRemesher, init, remesh, type Mesh, type ProgressEvent } from '../../dist/index.js';
+import { dataFile } from './helpers.js';
 
 /** An axis-aligned cube [0,1]^3, each face an n×n grid of quads split in two, outward oriented. */
 function cube(n: number): Mesh {
@@ -142,6 +143,18 @@ describe('remesh', () => {
     const same = cm.remesh(small, { ...fast, keepDefectiveOutput: true });
     expect(same.mesh.positions).toEqual(good.mesh.positions);
     expect(same.mesh.triangles).toEqual(good.mesh.triangles);
+  });
+
+  it("maxError: the report's Hausdorff distance within the bound, a looser bound coarser; negative is InvalidArgument", async () => {
+    const cm = await init();
+    const spot = cm.readMesh(dataFile('spot.obj'));
+    const tight = cm.remesh(spot, { maxErrorRel: 2e-3, attributes: false });
+    const loose = cm.remesh(spot, { maxErrorRel: 8e-3, attributes: false });
+    expect(tight.report.hausdorffRel).toBeLessThanOrEqual(2e-3);
+    expect(loose.report.hausdorffRel).toBeLessThanOrEqual(8e-3);
+    expect(loose.report.triangles).toBeLessThan(tight.report.triangles);
+    expect(tight.report.trianglesBelowBoundOutsideExempt).toBe(0);
+    expect(() => cm.remesh(small, { maxError: -1 })).toThrow(/maxError = -1 must be >= 0/);
   });
 
   it('keeps the heap flat (±1 %) over 100 calls', async () => {

@@ -1,0 +1,84 @@
+#include "remesh/max_error.h"
+
+#include <algorithm>
+#include <cmath>
+#include <string>
+
+#include "core/detmath.h"
+
+namespace conformesh {
+namespace {
+
+// The first chord tolerance, as a fraction of the bound: the curvature sizing bounds the chord
+// error of an arc by the tolerance, but the Hausdorff distance also has the triangles' longest
+// edges above the size, the gradation and the input's own facets (1.3 to 2.4 times the
+// tolerance on the models of ../shared/data), so 0.4 lands near the bound at the first attempt.
+constexpr double kFirstToleranceFactor = 0.4;
+// Attempts at most (each a whole remesh); the chord error grows about linearly with the
+// tolerance, so each attempt rescales it by the bound over the measured distance.
+constexpr int kMaxAttempts = 4;
+// The sampled distance is a lower bound of the true one: an attempt counts as within the bound
+// when its measured distance is at most this fraction of it.
+constexpr double kAcceptFraction = 0.9;
+// An attempt within the bound whose distance is above this fraction of it is close enough: a
+// looser tolerance would gain little.
+constexpr double kCloseEnoughFraction = 0.6;
+
+double inputDiagonal(const MeshBuffers& m) {
+  double lo[3] = {INFINITY, INFINITY, INFINITY}, hi[3] = {-INFINITY, -INFINITY, -INFINITY};
+  for (size_t v = 0; v < m.vertexCount(); ++v)
+    for (int k = 0; k < 3; ++k) lo[k] = std::min(lo[k], m.positions[3 * v + k]), hi[k] = std::max(hi[k], m.positions[3 * v + k]);
+  return m.vertexCount() == 0 ? 0.0 : dmath::hypot(hi[0] - lo[0], hi[1] - lo[1], hi[2] - lo[2]);
+}
+
+}  // namespace
+
+bool errorDriven(const RemeshOptions& o) { return o.maxError > 0 || o.maxErrorRel > 0; }
+
+double maxErrorBound(const MeshBuffers& input, const RemeshOptions& o) {
+  return o.maxError > 0 ? o.maxError : o.maxErrorRel * inputDiagonal(input);
+}
+
+RemeshResult remeshWithinError(const MeshBuffers& input, const RemeshOptions& options,
+                               const std::function<RemeshResult(const RemeshOptions&)>& attempt) {
+  const double bound = maxErrorBound(input, options), diagonal = inputDiagonal(input);
+  RemeshResult best;
+  // the tolerance factors known to be within the bound (lo, with its result in best) and above it
+  double lo = 0, hi = INFINITY, factor = kFirstToleranceFactor, lastDistance = 0;
+  std::vector<std::string> notes;
+  for (int a = 0; a < kMaxAttempts; ++a) {
+    RemeshOptions o = options;
+    o.chordTolerance = factor * bound;
+    o.computeHausdorff = true;
+    RemeshResult r = attempt(o);
+    if (!r.status.ok()) return r;
+    const double distance = r.report.hausdorffRel * diagonal;
+    lastDistance = distance;
+    notes.push_back("max error: attempt " + std::to_string(a + 1) + " (chord tolerance " + std::to_string(o.chordTolerance) +
+                    "): Hausdorff distance " + std::to_string(distance) + ", bound " + std::to_string(bound) + ", " +
+                    std::to_string(r.report.triangles) + " triangles");
+    if (distance <= kAcceptFraction * bound) {
+      if (lo == 0 || r.report.triangles < best.report.triangles) best = std::move(r);
+      lo = std::max(lo, factor);
+      if (distance >= kCloseEnoughFraction * bound) break;
+    } else {
+      hi = std::min(hi, factor);
+    }
+    // the chord error grows about linearly with the tolerance: aim at the accepted fraction,
+    // between the factors known to be within and above the bound (geometric mean when that aim
+    // falls outside them)
+    factor *= kAcceptFraction * bound / std::max(distance, 1e-300 * bound);
+    if (lo > 0 && hi < INFINITY && !(factor > lo && factor < hi)) factor = std::sqrt(lo * hi);
+  }
+  if (lo == 0) {
+    RemeshResult r;
+    r.status = Status{Code::IterationLimit, Stage::Report,
+                      "the Hausdorff distance " + std::to_string(lastDistance) + " is above maxError " + std::to_string(bound) +
+                          " after " + std::to_string(kMaxAttempts) + " attempts with tighter chord tolerances"};
+    return r;
+  }
+  best.report.warnings.insert(best.report.warnings.begin(), notes.begin(), notes.end());
+  return best;
+}
+
+}  // namespace conformesh

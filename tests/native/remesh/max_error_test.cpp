@@ -1,0 +1,64 @@
+// Error-driven remeshing (RemeshOptions::maxError, remesh/max_error.h): the output's Hausdorff
+// distance to the input, measured here with more samples than the report's, is within the bound;
+// the angle bound holds; a looser bound gives a coarser mesh; bad values are InvalidArgument.
+#include <doctest/doctest.h>
+
+#include <cmath>
+
+#include "features/test_shapes.h"
+#include "quality/metrics.h"
+#include "remesh/remesh.h"
+
+using namespace conformesh;
+
+namespace {
+
+RemeshResult withinError(const MeshBuffers& in, double rel) {
+  RemeshOptions o;
+  o.maxErrorRel = rel;
+  o.hausdorffSamples = 20000;
+  RemeshResult r = remesh(in, o);
+  REQUIRE_MESSAGE(r.status.ok(), r.status.message);
+  quality::HausdorffOptions ho;
+  ho.samplesPerSide = 200000;
+  ho.seed = 7;  // other points than the report's
+  const quality::HausdorffResult h = quality::hausdorffDistance(r.mesh, in, ho);
+  INFO("bound " << rel << ", measured " << h.relative << ", report " << r.report.hausdorffRel);
+  CHECK(h.relative <= rel);
+  CHECK(r.report.hausdorffRel <= rel);
+  CHECK(r.report.trianglesBelowBoundOutsideExempt == 0);
+  CHECK(r.report.topologyPreserved);
+  return r;
+}
+
+}  // namespace
+
+TEST_CASE("max error: a torus within two bounds, the looser one coarser") {
+  const MeshBuffers torus = testshapes::torus(96, 36);
+  const RemeshResult fine = withinError(torus, 1e-3), coarse = withinError(torus, 4e-3);
+  CHECK(coarse.mesh.triangleCount() < fine.mesh.triangleCount());
+}
+
+TEST_CASE("max error: a cube (flat faces) keeps its edges and grows its triangles") {
+  // flat faces: no chord error anywhere, so the sizes are the largest allowed, far above the
+  // default target edge length
+  const MeshBuffers cube = testshapes::cube(8);
+  const RemeshResult r = withinError(cube, 1e-3);
+  RemeshOptions defaults;
+  defaults.hausdorffSamples = 2000;
+  const RemeshResult d = remesh(cube, defaults);
+  REQUIRE(d.status.ok());
+  CHECK(r.mesh.triangleCount() < d.mesh.triangleCount());
+  CHECK(r.report.featureCurvesKept == r.report.featureCurves);
+}
+
+TEST_CASE("max error: negative or non-finite bounds are InvalidArgument") {
+  for (double bad : {-1e-3, double(NAN), double(INFINITY)}) {
+    RemeshOptions o;
+    o.maxError = bad;
+    CHECK(remesh(testshapes::cube(2), o).status.code == Code::InvalidArgument);
+    o = {};
+    o.maxErrorRel = bad;
+    CHECK(remesh(testshapes::cube(2), o).status.code == Code::InvalidArgument);
+  }
+}
