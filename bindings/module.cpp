@@ -35,18 +35,26 @@ val statusTable() {
   return rows;
 }
 
-//! The stage table: [{stage, name}, ...] with the numeric value and the report name ("flatten").
+//! The stage table (core/stages.h), in its order: [{stage, name, key, label, weight, timed, lo,
+//! hi}, ...] with the numeric value, the report name ("curve-mesh"), the report's seconds key
+//! ("curveMesh"), the label for people, the progress weight, whether remesh() times it, and its
+//! interval of a remesh's overall progress.
 val stageTable() {
   val rows = val::array();
-#define CONFORMESH_X(name, value, text)       \
-  {                                           \
-    val row = val::object();                  \
-    row.set("stage", value);                  \
-    row.set("name", std::string(text));       \
-    rows.call<void>("push", row);             \
+  for (int i = 0; i < stageCount(); ++i) {
+    const Stage s = Stage(i);
+    const StageInterval interval = progressInterval(s);
+    val row = val::object();
+    row.set("stage", i);
+    row.set("name", std::string(stageName(s)));
+    row.set("key", std::string(stageKey(s)));
+    row.set("label", std::string(stageLabel(s)));
+    row.set("weight", stageWeight(s));
+    row.set("timed", isRemeshStage(s));
+    row.set("lo", interval.lo);
+    row.set("hi", interval.hi);
+    rows.call<void>("push", row);
   }
-  CONFORMESH_STAGE_TABLE(CONFORMESH_X)
-#undef CONFORMESH_X
   return rows;
 }
 

@@ -69,41 +69,21 @@ val reportToJs(const RemeshReport& r) {
   o.set("topologyPreserved", r.topologyPreserved);
   const StageSeconds& t = r.seconds;
   val s = val::object();
-  s.set("validate", t.validate);
-  s.set("segment", t.segment);
-  s.set("flatten", t.flatten);
-  s.set("curveMesh", t.curveMesh);
-  s.set("refine", t.refine);
-  s.set("lift", t.lift);
-  s.set("optimize", t.optimize);
-  s.set("stitch", t.stitch);
-  s.set("report", t.report);
+  for (Stage st : kRemeshStages) s.set(stageKey(st), *t.of(st));
   s.set("total", t.total);
   o.set("seconds", s);
   o.set("warnings", bindings::stringArray(r.warnings));
   return o;
 }
 
-//! The pipeline reports a fraction per stage (validate, segment, flatten, curve-mesh, refine,
-//! lift, stitch, report, in that order); JS gets one fraction for the whole call: each stage owns
-//! an interval of [0, 1] sized by its typical share of the run time.
+//! The pipeline reports a fraction per stage; JS gets one fraction for the whole call: each stage
+//! owns the interval of [0, 1] its weight gives it (core/stages.h progressInterval).
 ProgressFn overallProgress(ProgressFn stageProgress) {
   if (!stageProgress) return {};
   return [inner = std::move(stageProgress)](Stage s, double f) {
-    double lo = 0, hi = 1;
-    switch (s) {
-      case Stage::Validate: lo = 0.00, hi = 0.02; break;
-      case Stage::Segment: lo = 0.02, hi = 0.10; break;
-      case Stage::Flatten: lo = 0.10, hi = 0.45; break;
-      case Stage::CurveMesh: lo = 0.45, hi = 0.50; break;
-      case Stage::Refine: lo = 0.50, hi = 0.85; break;
-      case Stage::Lift: lo = 0.85, hi = 0.92; break;
-      case Stage::Stitch: lo = 0.92, hi = 0.96; break;
-      case Stage::Report: lo = 0.96, hi = 1.00; break;
-      default: lo = 0, hi = 1; break;
-    }
+    const StageInterval i = progressInterval(s);
     const double t = f >= 0 && f <= 1 ? f : (f > 1 ? 1.0 : 0.0);
-    return inner(s, lo + t * (hi - lo));
+    return inner(s, i.lo + t * (i.hi - i.lo));
   };
 }
 

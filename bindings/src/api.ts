@@ -3,7 +3,8 @@
 // the shapes the glue expects, calls the glue through callRaw, and returns plain JS values.
 import { progressBridge, type ProgressOptions } from './progress.js';
 import { callRaw, requireExport, type RawModule } from './raw.js';
-import { ConformeshError, invalidArgument, type StageName } from './status.js';
+import type { StageName } from './stages.js';
+import { ConformeshError, invalidArgument } from './status.js';
 import type {
   FlattenOptions,
   FlattenResult,

@@ -35,15 +35,17 @@ export type { Conformesh } from './api.js';
 export type { InitOptions } from './loader.js';
 export type { ProgressOptions } from './progress.js';
 export * from './types.js';
+export { ConformeshError, StatusCode, type ConformeshErrorData, type ErrorCode, type StatusCodeName } from './status.js';
 export {
-  ConformeshError,
-  StatusCode,
+  REMESH_STAGES,
+  STAGES,
   Stage,
-  type ConformeshErrorData,
-  type ErrorCode,
+  stageInterval,
+  type RemeshStageRow,
   type StageName,
-  type StatusCodeName,
-} from './status.js';
+  type StageRow,
+  type StageSeconds,
+} from './stages.js';
 export { createRemesher, type Remesher, type RemesherOptions, type CallOptions, type ProgressEvent } from './remesher.js';
 
 let api: Promise<Conformesh> | undefined;

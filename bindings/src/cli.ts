@@ -6,6 +6,7 @@ import { readFile, writeFile } from 'node:fs/promises';
 import { setFlagsFromString } from 'node:v8';
 import type { Conformesh } from './api.js';
 import { init } from './index.js';
+import { REMESH_STAGES } from './stages.js';
 import { ConformeshError, StatusCode } from './status.js';
 import type { MeshFormat, RemeshResult } from './types.js';
 
@@ -522,9 +523,7 @@ const commands: Record<string, Command> = {
           num('repairMoves', R.repairMoves),
           `"warnings":${JSON.stringify(R.warnings)}`,
           `"topologyPreserved":${R.topologyPreserved ? 'true' : 'false'}`,
-          `"seconds":{${(['validate', 'segment', 'flatten', 'curveMesh', 'refine', 'lift', 'optimize', 'stitch', 'report', 'total'] as const)
-            .map((k) => num(k, t[k]))
-            .join(',')}}`,
+          `"seconds":{${[...REMESH_STAGES.map((s) => s.key), 'total' as const].map((k) => num(k, t[k])).join(',')}}`,
         ];
         process.stdout.write(`{${fields.join(',')}}\n`);
       } else {
@@ -544,12 +543,7 @@ const commands: Record<string, Command> = {
         row('patches', `${R.patches} (${R.curves} curves, ${R.curveSamples} samples)`);
         row('topology preserved', R.topologyPreserved ? 'yes' : 'NO');
         for (const w of R.warnings) row('warning', w);
-        row(
-          'seconds',
-          `validate ${fixed(t.validate, 3)}, segment ${fixed(t.segment, 3)}, flatten ${fixed(t.flatten, 3)}, curves ${fixed(t.curveMesh, 3)}, ` +
-            `refine ${fixed(t.refine, 3)}, lift ${fixed(t.lift, 3)}, optimize ${fixed(t.optimize, 3)}, stitch ${fixed(t.stitch, 3)}, ` +
-            `report ${fixed(t.report, 3)}, total ${fixed(t.total, 3)}`,
-        );
+        row('seconds', `${REMESH_STAGES.map((s) => `${s.label} ${fixed(t[s.key], 3)}, `).join('')}total ${fixed(t.total, 3)}`);
       }
       return 0;
     },

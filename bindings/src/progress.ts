@@ -5,7 +5,8 @@
 // The function handed to C++ must never throw (a JS exception unwinding through C++ frames skips
 // destructors): the user's listener is called inside try/catch, and what it threw is rethrown
 // after the WASM call has returned.
-import { ConformeshError, stageName, type StageName } from './status.js';
+import { stageName, type StageName } from './stages.js';
+import { ConformeshError } from './status.js';
 
 export interface ProgressOptions {
   onProgress?: ((event: { stage: StageName; fraction: number }) => void) | undefined;

@@ -6,7 +6,8 @@
 //                     { id, type: 'error', error }               ConformeshErrorData
 // One call is in flight per worker at a time; cancel = terminate that worker (a running WASM
 // call cannot see messages), and the client starts a fresh one for the next call.
-import type { ConformeshErrorData, StageName } from './status.js';
+import type { StageName } from './stages.js';
+import type { ConformeshErrorData } from './status.js';
 
 /** Methods a worker serves (the names of the Conformesh API functions). */
 export type WorkerMethod =

@@ -1,6 +1,7 @@
 // The raw Emscripten module (dist/conformesh.mjs + .wasm) as the facade sees it, and the one
 // place where its results become values or ConformeshErrors. Internal: not part of the public API.
-import { ConformeshError, isErrorCode, isStageName, type StageName } from './status.js';
+import { isStageName, type StageName } from './stages.js';
+import { ConformeshError, isErrorCode } from './status.js';
 import type { FlattenResult, MeshAttribute, MeshInfo, Pslg, Refine2dResult, RemeshResult, ValidateResult } from './types.js';
 
 /**
@@ -29,7 +30,8 @@ export interface RawStatusRow {
 export interface RawModule {
   version(): string;
   statusTable(): RawStatusRow[];
-  stageTable(): { stage: number; name: string }[];
+  /** core/stages.h: a row per stage, with its progress interval (lo, hi) in a remesh. */
+  stageTable(): { stage: number; name: string; key: string; label: string; weight: number; timed: boolean; lo: number; hi: number }[];
   heapStats(): { used: number; heapSize: number };
   progressSelfTest(steps: number, progress: ((stage: number, fraction: number) => boolean) | undefined): RawResult<number>;
   readMesh?(

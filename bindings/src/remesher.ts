@@ -4,7 +4,8 @@ import { wasmLocation } from './loader.js';
 import { platform } from './platform.js';
 import type { CallRequest, WorkerMethod, WorkerRequest, WorkerResponse } from './protocol.js';
 import { transferablesOf } from './protocol.js';
-import { ConformeshError, invalidArgument, type StageName } from './status.js';
+import type { StageName } from './stages.js';
+import { ConformeshError, invalidArgument } from './status.js';
 import type {
   FlattenOptions,
   FlattenResult,

@@ -1,6 +1,7 @@
 // The status table as seen from JavaScript. The single definition is the C++ table
 // (src/core/status.h); this copy exists only so the TypeScript union of codes can be a type, and
 // tests/js/status.test.ts checks it row by row against the module's statusTable() export.
+import { isStageName, type StageName } from './stages.js';
 import type { RemeshResult } from './types.js';
 
 /** Every status code by name, with its numeric value (same values as C++ `conformesh::Code`). */
@@ -30,31 +31,6 @@ export const StatusCode = {
 export type StatusCodeName = keyof typeof StatusCode;
 /** Codes a ConformeshError can carry (every code but `Ok`). */
 export type ErrorCode = Exclude<StatusCodeName, 'Ok'>;
-
-/** Pipeline stages, by their report name (same as C++ `stageName`), with numeric values. */
-export const Stage = {
-  read: 0,
-  validate: 1,
-  segment: 2,
-  'curve-mesh': 3,
-  flatten: 4,
-  refine: 5,
-  lift: 6,
-  stitch: 7,
-  report: 8,
-  write: 9,
-  api: 10,
-} as const;
-
-/** Name of a pipeline stage, e.g. `'flatten'`. */
-export type StageName = keyof typeof Stage;
-
-const stageNames = Object.keys(Stage) as StageName[];
-
-/** Stage name for a numeric stage (progress callbacks receive numbers from C++). */
-export function stageName(value: number): StageName {
-  return stageNames.find((name) => Stage[name] === value) ?? 'api';
-}
 
 /** Structured form of a ConformeshError, safe to post between threads (`result` holds typed arrays). */
 export interface ConformeshErrorData {
@@ -101,10 +77,6 @@ export class ConformeshError extends Error {
 
 export function isErrorCode(x: unknown): x is ErrorCode {
   return typeof x === 'string' && x !== 'Ok' && Object.prototype.hasOwnProperty.call(StatusCode, x);
-}
-
-export function isStageName(x: unknown): x is StageName {
-  return typeof x === 'string' && Object.prototype.hasOwnProperty.call(Stage, x);
 }
 
 /** Shorthand for argument errors detected in the facade. */

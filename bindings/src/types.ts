@@ -1,4 +1,5 @@
 // Public data types of the package.
+import type { StageSeconds } from './stages.js';
 import type { StatusCodeName } from './status.js';
 
 /**
@@ -438,18 +439,8 @@ export interface RemeshReport {
   estimatedTriangles: number;
   /** The topology check passed (false only in the result of an error, with keepDefectiveOutput). */
   topologyPreserved: boolean;
-  seconds: {
-    validate: number;
-    segment: number;
-    flatten: number;
-    curveMesh: number;
-    refine: number;
-    lift: number;
-    optimize: number;
-    stitch: number;
-    report: number;
-    total: number;
-  };
+  /** Wall seconds per stage, in the order remesh() runs them (STAGES), and in all. */
+  seconds: StageSeconds;
   warnings: string[];
 }
 

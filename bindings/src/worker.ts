@@ -5,7 +5,8 @@ import { bindApi, type Conformesh } from './api.js';
 import { loadRaw, type InitOptions } from './loader.js';
 import type { CallRequest, PostFn, WorkerMethod, WorkerRequest } from './protocol.js';
 import { transferablesOf } from './protocol.js';
-import { ConformeshError, type ConformeshErrorData, type StageName } from './status.js';
+import type { StageName } from './stages.js';
+import { ConformeshError, type ConformeshErrorData } from './status.js';
 import type { MeshFormat, MeshInfo, ReadMeshResult } from './types.js';
 
 type MethodImpl = (api: Conformesh, args: unknown[], progress: (stage: StageName, fraction: number) => void) => unknown;

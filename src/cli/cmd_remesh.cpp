@@ -58,11 +58,9 @@ std::string reportJson(const RemeshReport& r) {
   for (size_t i = 0; i < r.warnings.size(); ++i) s += (i ? "," : "") + jsonString(r.warnings[i]);
   s += "],";
   s += std::string("\"topologyPreserved\":") + (r.topologyPreserved ? "true" : "false") + ",";
-  const auto& t = r.seconds;
-  s += "\"seconds\":{\"validate\":" + jsonNumber(t.validate) + ",\"segment\":" + jsonNumber(t.segment) +
-       ",\"flatten\":" + jsonNumber(t.flatten) + ",\"curveMesh\":" + jsonNumber(t.curveMesh) +
-       ",\"refine\":" + jsonNumber(t.refine) + ",\"lift\":" + jsonNumber(t.lift) + ",\"optimize\":" + jsonNumber(t.optimize) + ",\"stitch\":" +
-       jsonNumber(t.stitch) + ",\"report\":" + jsonNumber(t.report) + ",\"total\":" + jsonNumber(t.total) + "}}";
+  s += "\"seconds\":{";
+  for (Stage st : kRemeshStages) num(stageKey(st), *r.seconds.of(st));
+  s += "\"total\":" + jsonNumber(r.seconds.total) + "}}";
   return s;
 }
 
@@ -83,11 +81,9 @@ void printTable(const RemeshReport& r) {
   std::printf("%-28s %zu (%zu curves, %zu samples)\n", "patches", r.patches, r.curves, r.curveSamples);
   std::printf("%-28s %s\n", "topology preserved", r.topologyPreserved ? "yes" : "NO");
   for (const auto& w : r.warnings) std::printf("%-28s %s\n", "warning", w.c_str());
-  const auto& t = r.seconds;
-  std::printf("%-28s validate %.3f, segment %.3f, flatten %.3f, curves %.3f, refine %.3f, lift %.3f, optimize %.3f, "
-              "stitch %.3f, report %.3f, total %.3f\n",
-              "seconds", t.validate, t.segment, t.flatten, t.curveMesh, t.refine, t.lift, t.optimize, t.stitch, t.report,
-              t.total);
+  std::printf("%-28s", "seconds");
+  for (Stage st : kRemeshStages) std::printf(" %s %.3f,", stageLabel(st), *r.seconds.of(st));
+  std::printf(" total %.3f\n", r.seconds.total);
 }
 
 // Every flag of remesh, with RemeshOptions' defaults: what parsing accepts and --help prints.

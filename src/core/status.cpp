@@ -42,17 +42,6 @@ int codeCount() { return kCodeCount; }
 
 Code codeAt(int i) { return (i >= 0 && i < kCodeCount) ? kCodes[i].code : Code::InternalError; }
 
-const char* stageName(Stage s) {
-  switch (s) {
-#define CONFORMESH_X(name, value, text) \
-  case Stage::name:                     \
-    return text;
-    CONFORMESH_STAGE_TABLE(CONFORMESH_X)
-#undef CONFORMESH_X
-  }
-  return "unknown";
-}
-
 void fail(Code code, Stage stage, const std::string& message) { throw Error(code, stage, message); }
 
 }  // namespace conformesh

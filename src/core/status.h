@@ -1,4 +1,4 @@
-// conformesh — status codes, stages and the error type.
+// conformesh — status codes and the error type (the stages: core/stages.h).
 //
 // The table below is the ONE definition of the status codes. C++ uses it through the
 // enum `Code`; the WASM module exports it (`statusTable()`), and the TypeScript union
@@ -7,6 +7,8 @@
 
 #include <stdexcept>
 #include <string>
+
+#include "core/stages.h"
 
 namespace conformesh {
 
@@ -38,34 +40,12 @@ enum class Code : int {
 #undef CONFORMESH_X
 };
 
-// Pipeline stages (../docs/ARCHITECTURE.md). Used in errors and progress reports.
-#define CONFORMESH_STAGE_TABLE(X) \
-  X(Read, 0, "read")              \
-  X(Validate, 1, "validate")      \
-  X(Segment, 2, "segment")        \
-  X(CurveMesh, 3, "curve-mesh")   \
-  X(Flatten, 4, "flatten")        \
-  X(Refine, 5, "refine")          \
-  X(Lift, 6, "lift")              \
-  X(Stitch, 7, "stitch")          \
-  X(Report, 8, "report")          \
-  X(Write, 9, "write")            \
-  X(Api, 10, "api")
-
-enum class Stage : int {
-#define CONFORMESH_X(name, value, text) name = value,
-  CONFORMESH_STAGE_TABLE(CONFORMESH_X)
-#undef CONFORMESH_X
-};
-
 //! Name of a code as in the table ("NonManifoldEdge"); "Unknown" for values not in it.
 const char* codeName(Code c);
 //! The table's one-line meaning of a code.
 const char* codeMeaning(Code c);
 //! Whether the code stops the pipeline (true) or is repaired and reported as a warning.
 bool codeIsFatal(Code c);
-//! Stage name as used in reports and JSON ("flatten").
-const char* stageName(Stage s);
 //! Number of rows in the status table.
 int codeCount();
 //! Row i of the status table (0 <= i < codeCount()).

@@ -249,7 +249,7 @@ void cornerChains(const Surface& surf, const Meshing& m, const PatchWork& w, con
 
 }  // namespace
 
-void meshPatch(const Surface& surf, const RemeshOptions& opt, Meshing& m, uint32_t p, bool splitSegments) {
+void meshPatch(const Surface& surf, const RemeshOptions& opt, Meshing& m, uint32_t p, StageClock& clock, bool splitSegments) {
   PatchWork& w = *m.patches[p];
   w.builtAt = ++m.samples.stamp;
   w.dirty = false;
@@ -350,7 +350,7 @@ void meshPatch(const Surface& surf, const RemeshOptions& opt, Meshing& m, uint32
   dropUnusedPoints(rr.mesh, bp.size());
   spatialOrder(rr.mesh, bp.size());
   const auto& pmsh = rr.mesh;
-  auto tl = std::chrono::steady_clock::now();
+  const Stage refining = clock.enter(Stage::Lift);
   const size_t nv = pmsh.vertexCount();
   w.localToGlobal.assign(nv, kNone);
   w.interiorPositions.assign(nv, F::Vec3{});
@@ -383,7 +383,7 @@ void meshPatch(const Surface& surf, const RemeshOptions& opt, Meshing& m, uint32
   }
   w.triangles = pmsh.triangles;
   w.planarPoints = pmsh.points;
-  m.liftSeconds += elapsed(tl);
+  clock.enter(refining);
 }
 
 void optimizeMesh(const Surface& surf, const RemeshOptions& opt, Meshing& m, uint32_t p, RemeshReport& rep,
@@ -391,7 +391,6 @@ void optimizeMesh(const Surface& surf, const RemeshOptions& opt, Meshing& m, uin
   PatchWork& w = *m.patches[p];
   w.optimized = true;
   if (!opt.optimize || opt.optimizeIterations == 0) return;
-  auto t0 = std::chrono::steady_clock::now();
   const size_t nv = w.planarPoints.size() / 2;
   std::vector<F::Vec3> pos(nv);
   std::vector<uint8_t> fixed(nv, 0);
@@ -435,7 +434,6 @@ void optimizeMesh(const Surface& surf, const RemeshOptions& opt, Meshing& m, uin
     if (!fixed[v]) w.interiorPositions[v] = pos[v];
   rep.optimizeMoves += st.moves;
   rep.optimizeFlips += st.flips;
-  m.optimizeSeconds += elapsed(t0);
 }
 
 }  // namespace conformesh::pipeline

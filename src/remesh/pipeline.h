@@ -37,8 +37,23 @@ struct Progress {
   void check(Stage s, double fraction) const;
 };
 
-//! Seconds since t, and t moved to now.
-double elapsed(std::chrono::steady_clock::time_point& t);
+//! Wall time per stage (RemeshReport::seconds): the time between two switches goes to the stage
+//! that was current.
+class StageClock {
+ public:
+  explicit StageClock(Stage first);
+  //! Charge the time since the last switch to the current stage and make s current; returns the
+  //! stage left (to go back to after a nested one).
+  Stage enter(Stage s);
+  //! Every stage's seconds so far (the current one's up to now) and the total since construction.
+  StageSeconds seconds();
+
+ private:
+  using Clock = std::chrono::steady_clock;
+  StageSeconds seconds_;
+  Stage current_;
+  Clock::time_point start_, last_;
+};
 
 //! The input as the stages see it: validated, preconditioned, segmented, sized.
 struct Surface {
@@ -104,7 +119,6 @@ struct Meshing {
   //! them, in the plane (mesh_patch.cpp) as in 3D (certificate.h). Measured by measureCorners.
   std::vector<double> cornerWedgeDeg;
   std::vector<uint8_t> smallCorner;
-  double liftSeconds = 0, optimizeSeconds = 0;
 };
 
 }  // namespace conformesh::pipeline

@@ -1,7 +1,6 @@
 #include "remesh/remesh.h"
 
 #include <array>
-#include <chrono>
 #include <string>
 
 #include "core/detmath.h"
@@ -58,46 +57,47 @@ void repairBelowBound(const Surface& surf, const CurveSamples& cs, const ExemptC
                            std::to_string(rs.left) + " triangles below the bound");
 }
 
-// The pipeline of ../shared/DESIGN.md, stage by stage (each in its own file; see pipeline.h).
+// The pipeline of ../shared/DESIGN.md in the order of CONFORMESH_REMESH_STAGES (core/stages.h),
+// each stage in its own file (pipeline.h).
 RemeshResult run(const MeshBuffers& input, const RemeshOptions& opt, const ProgressFn& progressFn) {
   const Progress progress{progressFn};
+  StageClock clock(Stage::Validate);
+  const auto begin = [&](Stage s) {
+    clock.enter(s);
+    progress.check(s, 0);
+  };
   RemeshReport rep;
-  auto clock = std::chrono::steady_clock::now(), start = clock;
   checkOptions(opt);
 
-  progress.check(Stage::Validate, 0);
+  begin(Stage::Validate);
   ValidatedMesh vm = validate(input);
   rep.inputTriangles = vm.buffers.triangleCount();
   rep.inputVertices = vm.buffers.vertexCount();
   for (const auto& wn : vm.report.warnings) rep.warnings.push_back(wn.message);
-  rep.seconds.validate = elapsed(clock);
 
-  progress.check(Stage::Segment, 0);
+  begin(Stage::Segment);
   Surface surf = prepareSurface(std::move(vm), input, opt, progress, rep);
-  rep.seconds.segment = elapsed(clock);
 
-  progress.check(Stage::Flatten, 0);
+  begin(Stage::Flatten);
   Meshing m;
   m.patches = flattenPatches(surf, opt, progress, rep);
-  rep.seconds.flatten = elapsed(clock);
 
-  progress.check(Stage::CurveMesh, 0);
+  begin(Stage::CurveMesh);
   m.samples.cm = F::sampleCurves(surf.g, surf.seg, surf.sizing);
   indexSamples(surf, m.samples);
   measureCorners(surf, opt.minAngleDeg, m);
-  rep.seconds.curveMesh = elapsed(clock);
 
-  // refine + lift + optimize, re-meshing neighbours of split segments, then the 3D angle certificate
+  // refine, lift, optimize, stitch and certificate in rounds (rounds.h)
   ExemptCorners exempt(opt.minAngleDeg);
   BestRound best = meshRounds(surf, opt, progress, m, exempt, rep, clock);
-  if (best.bad > 0) repairBelowBound(surf, m.samples, exempt, opt, best, rep);  // counted in the stitch's time
+  if (best.bad > 0) {
+    begin(Stage::Repair);
+    repairBelowBound(surf, m.samples, exempt, opt, best, rep);
+  }
   if (opt.forceTopologyDefect) addNonManifoldEdge(best.out, best.vertexFace, exempt.vertex, best.triPatch);
-  rep.seconds.lift = m.liftSeconds;
-  rep.seconds.refine -= m.liftSeconds + m.optimizeSeconds;
-  rep.seconds.optimize = m.optimizeSeconds;
-  rep.seconds.stitch = elapsed(clock);
   checkOutputCounts(best.out.vertexCount(), best.out.triangleCount(), opt);  // remesh/limits.h
 
+  begin(Stage::Report);
   // The patches' work is done: their memory goes back to the heap first, where the report's
   // buffers find it (fresh pages cost a fault each).
   rep.patches = m.patches.size();
@@ -106,8 +106,7 @@ RemeshResult run(const MeshBuffers& input, const RemeshOptions& opt, const Progr
   RemeshResult res;
   res.status = reportOutput(surf, m.samples, best.out, best.vertexFace, exempt, opt, rep);
   progress.check(Stage::Report, 1.0);
-  rep.seconds.report = elapsed(clock);
-  rep.seconds.total = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  rep.seconds = clock.seconds();
   res.mesh = std::move(best.out);
   res.report = std::move(rep);
   if (opt.returnPatches) {

@@ -1,9 +1,6 @@
 // conformesh — the remesh pipeline: a triangle mesh in, a new high-quality triangulation of the
-// same surface out (docs/ARCHITECTURE.md):
-//   validate -> segment (features, patches cut to disks) -> curve-mesh (shared samples) ->
-//   per patch: flatten (Ricci flow, corner-preserving boundary) -> refine (planar Delaunay
-//   refinement, h_plane = h_3D · planar/3D scale) -> lift (pull-back onto the input surface)
-//   -> stitch (one vertex per curve sample) -> 3D angle certificate -> report.
+// same surface out. Its stages, in order, are CONFORMESH_REMESH_STAGES (core/stages.h); what
+// each does and hands on is in docs/ARCHITECTURE.md.
 #pragma once
 
 #include <array>
@@ -134,9 +131,27 @@ struct ExemptCorner {
   std::vector<uint32_t> triangles;  //!< output triangles exempt for it: touching it or across its wedge (above)
 };
 
+//! Wall seconds per stage of remesh(), one field per row of CONFORMESH_REMESH_STAGES
+//! (core/stages.h), and the whole call.
 struct StageSeconds {
-  double validate = 0, segment = 0, curveMesh = 0, flatten = 0, refine = 0, lift = 0, optimize = 0,
-         stitch = 0, report = 0, total = 0;
+#define CONFORMESH_X(id, key, name, label, weight) double key = 0;
+  CONFORMESH_REMESH_STAGES(CONFORMESH_X)
+#undef CONFORMESH_X
+  double total = 0;
+
+  //! The field of stage s; nullptr for a stage remesh() does not run (read, write, api).
+  double* of(Stage s) {
+    switch (s) {
+#define CONFORMESH_X(id, key, name, label, weight) \
+  case Stage::id:                                  \
+    return &key;
+      CONFORMESH_REMESH_STAGES(CONFORMESH_X)
+#undef CONFORMESH_X
+      default:
+        return nullptr;
+    }
+  }
+  const double* of(Stage s) const { return const_cast<StageSeconds*>(this)->of(s); }
 };
 
 struct RemeshReport {

@@ -19,7 +19,7 @@ constexpr int kKeepBoundaryRounds = 2;
 }  // namespace
 
 BestRound meshRounds(const Surface& surf, const RemeshOptions& opt, const Progress& progress, Meshing& m,
-                     ExemptCorners& exempt, RemeshReport& rep, std::chrono::steady_clock::time_point& clock) {
+                     ExemptCorners& exempt, RemeshReport& rep, StageClock& clock) {
   Patches& work = m.patches;
   BestRound best;
   MeshBuffers out;
@@ -29,6 +29,13 @@ BestRound meshRounds(const Surface& surf, const RemeshOptions& opt, const Progre
   int staleRounds = 0;  // certificate rounds in a row that did not beat the best
   std::vector<std::vector<uint32_t>> bestCurveSamples;
   for (int cert = 0;; ++cert) {
+    // the first round runs the stages in their order; a later one re-meshes what the certificate
+    // asked for, its progress that of the certificate's rounds
+    const auto report = [&](Stage s, double f) {
+      if (cert == 0) progress.check(s, f);
+      else progress.check(Stage::Certificate, double(cert) / double(opt.maxCertificateRounds + 1));
+    };
+    clock.enter(Stage::Refine);
     // Refine every patch that needs it; a refinement that splits a boundary segment adds a
     // curve sample there, which the patches on the other side of that curve must include: they
     // are refined again from scratch with it, until no patch splits a segment (samples only get
@@ -40,8 +47,8 @@ BestRound meshRounds(const Surface& surf, const RemeshOptions& opt, const Progre
         if (work[p]->needsMesh || (work[p]->dirty && round < kConformingRounds)) todo.push_back(p);
       if (todo.empty()) break;
       for (size_t i = 0; i < todo.size(); ++i) {
-        meshPatch(surf, opt, m, todo[i], !work[todo[i]]->keepBoundary);
-        progress.check(Stage::Refine, double(i + 1) / double(todo.size()));
+        meshPatch(surf, opt, m, todo[i], clock, !work[todo[i]]->keepBoundary);
+        report(Stage::Refine, double(i + 1) / double(todo.size()));
       }
     }
     // past the round cap (refinements near small angles between curves can keep splitting
@@ -49,15 +56,19 @@ BestRound meshRounds(const Surface& surf, const RemeshOptions& opt, const Progre
     // splitting their boundary, so every patch has exactly the curve samples and they stitch
     for (uint32_t p = 0; p < work.size(); ++p)
       if (work[p]->dirty) {
-        meshPatch(surf, opt, m, p, false);
+        meshPatch(surf, opt, m, p, clock, false);
         rep.warnings.push_back("patch " + std::to_string(p) + ": refined without boundary splits after " +
                                std::to_string(kConformingRounds) + " conforming rounds");
       }
+    clock.enter(Stage::Optimize);
+    report(Stage::Optimize, 0);
+    std::vector<uint32_t> unoptimized;
     for (uint32_t p = 0; p < work.size(); ++p)
-      if (!work[p]->optimized) {
-        optimizeMesh(surf, opt, m, p, rep);
-        progress.check(Stage::Refine, 1.0);
-      }
+      if (!work[p]->optimized) unoptimized.push_back(p);
+    for (size_t i = 0; i < unoptimized.size(); ++i) {
+      optimizeMesh(surf, opt, m, unoptimized[i], rep);
+      report(Stage::Optimize, double(i + 1) / double(unoptimized.size()));
+    }
     // curve samples slide along their curves, then the interior around each slid sample gets
     // another optimization (local: the vertices of its stars first), guarded so that it does not
     // take the output farther from the input
@@ -66,11 +77,12 @@ BestRound meshRounds(const Surface& surf, const RemeshOptions& opt, const Progre
       for (uint32_t p = 0; p < work.size(); ++p)
         if (!slid[p].empty()) {
           optimizeMesh(surf, opt, m, p, rep, slid[p]);
-          progress.check(Stage::Refine, 1.0);
+          report(Stage::Optimize, 1.0);
         }
     }
     rep.conformingRounds = std::max(rep.conformingRounds, round);
-    rep.seconds.refine += elapsed(clock);
+    clock.enter(Stage::Stitch);
+    report(Stage::Stitch, 0);
     if (outIsBest) {
       best.out = std::move(out);
       best.triPatch = std::move(triPatch);
@@ -78,6 +90,8 @@ BestRound meshRounds(const Surface& surf, const RemeshOptions& opt, const Progre
       outIsBest = false;
     }
     out = stitch(surf, m, triPatch, vertexFace);
+    clock.enter(Stage::Certificate);
+    report(Stage::Certificate, 0);
     if (exempt.vertex.empty()) exempt.find(surf, m, out.vertexCount(), rep);
     exempt.vertex.resize(out.vertexCount(), 0);
     exempt.indexWedges(surf, m.samples);
@@ -123,6 +137,7 @@ BestRound meshRounds(const Surface& surf, const RemeshOptions& opt, const Progre
   exempt.vertex.resize(best.out.vertexCount(), 0);
   m.samples.cm.curveSamples = std::move(bestCurveSamples);
   exempt.indexWedges(surf, m.samples);  // the best round's curves: the repair asks which corner owns a triangle
+  progress.check(Stage::Certificate, 1.0);
   return best;
 }
 

@@ -3,8 +3,6 @@
 // angle certificate, which asks for smaller triangles where it fails; the best round is kept.
 #pragma once
 
-#include <chrono>
-
 #include "remesh/certificate.h"
 #include "remesh/pipeline.h"
 
@@ -22,8 +20,9 @@ struct BestRound {
 
 //! Run the rounds on the flattened patches, up to RemeshOptions::maxCertificateRounds (and a
 //! few more while a stitch defect is left). m.samples ends with the best round's curve samples;
-//! `exempt` is found on the first round. The time goes to rep.seconds.refine from `clock`.
+//! `exempt` is found on the first round. Each step's time goes to its stage on `clock`; the first
+//! round reports progress as its stages, the later ones as Stage::Certificate.
 BestRound meshRounds(const Surface& surf, const RemeshOptions& opt, const Progress& progress, Meshing& m,
-                     ExemptCorners& exempt, RemeshReport& rep, std::chrono::steady_clock::time_point& clock);
+                     ExemptCorners& exempt, RemeshReport& rep, StageClock& clock);
 
 }  // namespace conformesh::pipeline

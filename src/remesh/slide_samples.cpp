@@ -14,7 +14,6 @@ namespace conformesh::pipeline {
 std::vector<std::vector<uint8_t>> slideSamples(const Surface& surf, const RemeshOptions& opt, Meshing& m, RemeshReport& rep) {
   Patches& work = m.patches;
   std::vector<std::vector<uint8_t>> slid(work.size());
-  auto t0 = std::chrono::steady_clock::now();
   const size_t nS = m.samples.cm.samples.size();
   const double bound = opt.minAngleDeg;
   struct Hold {
@@ -270,7 +269,6 @@ std::vector<std::vector<uint8_t>> slideSamples(const Surface& surf, const Remesh
     work[p]->optimizeCache.starStart.swap(stars[p].start);
     work[p]->optimizeCache.starTri.swap(stars[p].tri);
   }
-  m.optimizeSeconds += elapsed(t0);
   return slid;
 }
 

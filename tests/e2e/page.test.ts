@@ -12,7 +12,7 @@ import { build } from 'vite';
 import { afterAll, beforeAll, describe, expect, it } from 'vitest';
 import { createRemesher, readMesh } from '../../dist/index.js';
 import { decodePng, pixelStats, type Image } from './png.ts';
-import { STAGE_INTERVALS, stageFraction } from '../../web/src/stages.ts';
+import { stageFraction } from '../../web/src/stages.ts';
 import { GROUPS, entryOf, reportValues, reportedStages, stageKey } from '../../web/src/quality.ts';
 import type { RemeshReport } from '../../dist/index.js';
 import { packBoxes, type Box2 } from '../../web/src/atlas.ts';
@@ -372,17 +372,6 @@ describe('demo page in headless Chromium', () => {
         }
       }
       for (let k = 1; k < completedAt.length; ++k) expect(completedAt[k], `${order[k]} completes after ${order[k - 1]}`).toBeGreaterThanOrEqual(completedAt[k - 1]!);
-    });
-
-    it('the bars\u2019 stage intervals are the library\u2019s (bindings/remesh.cpp overallProgress)', async () => {
-      const cpp = await readFile(join(root, 'bindings', 'remesh.cpp'), 'utf8');
-      const cases = [...cpp.matchAll(/case Stage::(\w+): lo = ([0-9.]+), hi = ([0-9.]+);/g)];
-      expect(cases.length).toBe(STAGE_INTERVALS.length);
-      for (const bar of STAGE_INTERVALS) {
-        const m = cases.find((c) => stageKey(c[1]!) === stageKey(bar.stage));
-        expect(m, `Stage::${bar.stage} in overallProgress`).toBeDefined();
-        expect([bar.lo, bar.hi]).toEqual([Number(m![2]), Number(m![3])]);
-      }
     });
 
     it('the quality table is in words, grouped Input / Output / Pipeline, with a known row for every key of the report', async () => {

@@ -6,7 +6,7 @@ import { join } from 'node:path';
 import { fileURLToPath } from 'node:url';
 import { describe, expect, it, vi } from 'vitest';
 import { main } from '../../dist/cli.js';
-import { init } from '../../dist/index.js';
+import { init, REMESH_STAGES } from '../../dist/index.js';
 import { dataFile, root } from './helpers.js';
 
 const cli = join(root, 'dist', 'cli.js');
@@ -288,10 +288,19 @@ describe('package CLI: refine2d, flatten, remesh', () => {
     expect(wasm.status).toBe(nat.status);
     const w = JSON.parse(wasm.stdout), n = JSON.parse(nat.stdout);
     expect(Object.keys(w)).toEqual(Object.keys(n));
+    // one seconds key per stage of the table, in its order (src/core/stages.h), in both
+    expect(Object.keys(w.seconds)).toEqual([...REMESH_STAGES.map((s) => s.key), 'total']);
+    expect(Object.keys(n.seconds)).toEqual(Object.keys(w.seconds));
     // Both builds compute the same bits (docs/ARCHITECTURE.md, "Determinism"): only the timings differ.
     delete w.seconds;
     delete n.seconds;
     expect(w).toEqual(n);
+    // the text report: the same lines, the seconds' labels the table's
+    const text = ['remesh', input, '--edge-length-rel', '0.1', '--no-hausdorff'];
+    const numbers = (t: string) => t.replace(/[0-9]+\.[0-9]+/g, '#');
+    const wasmText = numbers(run(text).stdout);
+    expect(wasmText).toBe(numbers(spawnSync(native, text, { encoding: 'utf8' }).stdout));
+    expect(wasmText).toContain(`${REMESH_STAGES.map((s) => `${s.label} #, `).join('')}total #`);
     if (!('error' in n)) {
       expect(n.topologyPreserved).toBe(true);
       expect(n.trianglesBelowBoundOutsideExempt).toBe(0);

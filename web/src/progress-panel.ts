@@ -1,7 +1,7 @@
 // The demo page's progress panel: a bar per stage the library reports (its progress events, then
 // its per-stage seconds) and the status line of the running remesh.
 import type { RemeshReport } from 'conformesh';
-import { entryOf, reportedStages, stageKey, stageLabel } from './quality.ts';
+import { reportedStages, stageKey, stageLabel } from './quality.ts';
 import { StageProgress, type BarUpdate } from './stages.ts';
 
 interface Bar {
@@ -54,7 +54,7 @@ export class ProgressPanel {
       const s = (report.seconds as unknown as Record<string, number>)[stage]!;
       b.label.textContent = `${s.toFixed(2)} s`;
       b.time.style.width = `${(100 * Math.min(1, total > 0 ? s / total : 0)).toFixed(1)}%`;
-      b.li.title = `${entryOf(`seconds.${stage}`)?.label.replace(/^time: /, '') ?? stage}: ${s.toFixed(3)} s of ${total.toFixed(3)} s`;
+      b.li.title = `${stageLabel(stage)}: ${s.toFixed(3)} s of ${total.toFixed(3)} s`;
     }
   }
 
@@ -95,8 +95,7 @@ export class ProgressPanel {
       const li = document.createElement('li');
       const name = document.createElement('span');
       name.textContent = stageLabel(this.stages.names.get(key)!);
-      const seconds = entryOf(`seconds.${this.stages.names.get(key)}`);
-      li.title = seconds?.label.replace(/^time: /, '') ?? name.textContent;
+      li.title = name.textContent;
       const outer = document.createElement('div');
       outer.className = 'bar';
       const bar = document.createElement('div');

@@ -2,8 +2,9 @@
 // unit and its group (Input / Output / Pipeline). Keys are the library report's own paths
 // (RemeshReport: 'minAngle', 'seconds.flatten', 'exemptCorners', …) or, for what the page
 // measures itself on the loaded mesh, 'input.*'. Nothing else in the page holds a label: the
-// table rows, the stage bars' names ('seconds.*' entries' `stage`) and the tests come from here.
-import type { RemeshReport } from 'conformesh';
+// table rows and the tests come from here, the stages' rows and bar names from the package's
+// stage table (STAGES).
+import { REMESH_STAGES, STAGES, type RemeshReport } from 'conformesh';
 
 export type Group = 'input' | 'output' | 'pipeline';
 export const GROUPS: readonly { group: Group; title: string }[] = [
@@ -26,8 +27,6 @@ export interface QualityEntry {
   label: string;
   unit: Unit;
   group: Group;
-  /** For 'seconds.*': the name of the stage's bar. */
-  stage?: string;
   /** What the number means, for the row's tooltip. */
   hint?: string;
 }
@@ -84,15 +83,7 @@ export const QUALITY: readonly QualityEntry[] = [
   { key: 'optimizeMoves', label: 'vertex moves by the optimization', unit: 'count', group: 'pipeline' },
   { key: 'optimizeFlips', label: 'edge flips by the optimization', unit: 'count', group: 'pipeline' },
   { key: 'repairMoves', label: 'vertices moved to repair an angle', unit: 'count', group: 'pipeline' },
-  { key: 'seconds.validate', label: 'time: checking and repairing the input', stage: 'check input', unit: 's', group: 'pipeline' },
-  { key: 'seconds.segment', label: 'time: features, cuts and patches', stage: 'segment', unit: 's', group: 'pipeline' },
-  { key: 'seconds.flatten', label: 'time: conformal flattening', stage: 'flatten', unit: 's', group: 'pipeline' },
-  { key: 'seconds.curveMesh', label: 'time: meshing the curves', stage: 'curves', unit: 's', group: 'pipeline' },
-  { key: 'seconds.refine', label: 'time: planar Delaunay refinement', stage: 'refine', unit: 's', group: 'pipeline' },
-  { key: 'seconds.lift', label: 'time: lifting back to 3D', stage: 'lift to 3D', unit: 's', group: 'pipeline' },
-  { key: 'seconds.optimize', label: 'time: optimization', stage: 'optimize', unit: 's', group: 'pipeline' },
-  { key: 'seconds.stitch', label: 'time: stitching the patches', stage: 'stitch', unit: 's', group: 'pipeline' },
-  { key: 'seconds.report', label: 'time: this report', stage: 'report', unit: 's', group: 'pipeline' },
+  ...REMESH_STAGES.map((s): QualityEntry => ({ key: `seconds.${s.key}`, label: `time: ${s.label}`, unit: 's', group: 'pipeline' })),
   { key: 'seconds.total', label: 'time: total in the library', unit: 's', group: 'pipeline' },
   { key: 'page.seconds', label: 'time: click to result (page clock)', unit: 's', group: 'pipeline', hint: 'includes the worker round trip' },
   { key: 'warnings', label: 'warnings', unit: 'text', group: 'pipeline' },
@@ -160,9 +151,9 @@ export function reportedStages(report: RemeshReport): string[] {
   return Object.keys(report.seconds ?? {}).filter((k) => k !== 'total');
 }
 
-/** The bar name of a stage (the table's 'seconds.*' entry), else its name in words. */
+/** The bar name of a stage (the library's label), else its name in words. */
 export function stageLabel(name: string): string {
   const key = stageKey(name);
-  const e = QUALITY.find((x) => x.key.startsWith('seconds.') && stageKey(x.key.slice(8)) === key);
-  return e?.stage ?? name.replace(/([a-z])([A-Z])/g, '$1 $2').replace(/-/g, ' ').toLowerCase();
+  const row = STAGES.find((s) => stageKey(s.name) === key);
+  return row?.label ?? name.replace(/([a-z])([A-Z])/g, '$1 $2').replace(/-/g, ' ').toLowerCase();
 }

@@ -1,38 +1,17 @@
 // The remesh stage bars. The stages come from the library: those its progress events name, and
 // those whose times its report gives (report.seconds); a stage is one bar whichever of the two
 // names it ('curve-mesh' / 'curveMesh', quality.ts stageKey). The library reports (stage,
-// fraction) with fraction the progress of the whole call: bindings/remesh.cpp overallProgress
-// gives each reporting stage an interval of [0, 1], and a bar shows its stage's own progress,
+// fraction) with fraction the progress of the whole call, each stage's own progress over its
+// interval of [0, 1] (the package's stageInterval), and a bar shows its stage's own progress,
 // 0 -> 100 % over that interval. After the call every bar is full and shows the stage's time.
+import { STAGES, stageInterval } from 'conformesh';
 import { stageKey } from './quality.ts';
 
-export interface StageInterval {
-  /** The library's stage name (ProgressEvent.stage). */
-  stage: string;
-  /** The stage's interval of the overall fraction (bindings/remesh.cpp overallProgress). */
-  lo: number;
-  hi: number;
-}
-
-/**
- * The intervals of bindings/remesh.cpp overallProgress (a test compares them with it). Only for
- * turning the overall fraction into a stage's own: which bars exist is up to the library.
- */
-export const STAGE_INTERVALS: readonly StageInterval[] = [
-  { stage: 'validate', lo: 0.0, hi: 0.02 },
-  { stage: 'segment', lo: 0.02, hi: 0.1 },
-  { stage: 'flatten', lo: 0.1, hi: 0.45 },
-  { stage: 'curve-mesh', lo: 0.45, hi: 0.5 },
-  { stage: 'refine', lo: 0.5, hi: 0.85 },
-  { stage: 'lift', lo: 0.85, hi: 0.92 },
-  { stage: 'stitch', lo: 0.92, hi: 0.96 },
-  { stage: 'report', lo: 0.96, hi: 1.0 },
-];
-
-/** A stage's own progress in [0, 1] from the call's overall fraction (undefined: no known interval). */
+/** A stage's own progress in [0, 1] from the call's overall fraction (undefined: it reports none). */
 export function stageFraction(stage: string, overall: number): number | undefined {
-  const i = STAGE_INTERVALS.find((b) => stageKey(b.stage) === stageKey(stage));
-  if (!i) return undefined;
+  const row = STAGES.find((s) => stageKey(s.name) === stageKey(stage));
+  if (!row || row.weight === 0) return undefined;
+  const i = stageInterval(row.name);
   const f = (overall - i.lo) / (i.hi - i.lo);
   return Math.min(1, Math.max(0, Number.isFinite(f) ? f : 0));
 }

@@ -5,6 +5,7 @@
 #include <array>
 #include <map>
 #include <set>
+#include <vector>
 
 #include "features/test_shapes.h"
 #include "mesh/mesh_io.h"
@@ -127,6 +128,36 @@ TEST_CASE("remesh: a corner wedge two patches close alike is opened (camel, feat
   o.featureAngleDeg = 30;
   o.hausdorffSamples = 2000;
   checkRemesh(rr.mesh, o, "camel.off at 30 degrees", false, false);
+}
+
+// lion-head takes certificate rounds and a repair: every stage of the table runs, in its order.
+TEST_CASE("remesh: progress comes in the stage table's order, and the report times every stage") {
+  ReadResult rr = readMesh(test::readFile(std::string(CONFORMESH_DATA_DIR) + "/lion-head.off"));
+  RemeshOptions o;
+  o.computeHausdorff = false;
+  std::vector<Stage> reported;
+  RemeshResult r = remesh(rr.mesh, o, [&](Stage s, double f) {
+    CHECK(f >= 0);
+    CHECK(f <= 1);
+    if (reported.empty() || reported.back() != s) reported.push_back(s);
+    return true;
+  });
+  REQUIRE(r.status.ok());
+  REQUIRE(r.report.certificateRounds > 0);
+  REQUIRE(r.report.repairMoves > 0);
+  for (size_t i = 1; i < reported.size(); ++i) CHECK(int(reported[i - 1]) < int(reported[i]));
+  // lift runs inside refine, per patch: it reports no progress of its own
+  for (Stage s : kRemeshStages)
+    if (s != Stage::Lift) CHECK_MESSAGE(std::find(reported.begin(), reported.end(), s) != reported.end(), stageName(s));
+  double sum = 0;
+  for (Stage s : kRemeshStages) {
+    CHECK(*r.report.seconds.of(s) >= 0);
+    sum += *r.report.seconds.of(s);
+  }
+  CHECK(*r.report.seconds.of(Stage::Certificate) > 0);
+  CHECK(*r.report.seconds.of(Stage::Repair) > 0);
+  CHECK(sum == doctest::Approx(r.report.seconds.total).epsilon(1e-9));
+  CHECK(r.report.seconds.of(Stage::Read) == nullptr);
 }
 
 TEST_CASE("remesh: returnPatches gives each patch's planar mesh, consistent with the output") {
