@@ -211,6 +211,7 @@ const remeshKeys: (keyof RemeshOptions)[] = [
   'optimize',
   'optimizeIterations',
   'optimizeTolerance',
+  'threads',
   'patches',
   'attributes',
   'surfacePoints',

@@ -423,6 +423,14 @@ const commands: Record<string, Command> = {
         help: 'stop optimizing when a pass gains less than this fraction of the mean min angle',
         default: 1e-3,
       },
+      {
+        name: '--threads',
+        value: 'N',
+        help:
+          "threads over the patches and the report's distances, an integer >= 0; 0: the hardware's concurrency; " +
+          'the output is the same for every count',
+        default: 0,
+      },
       { name: '--no-optimize', value: '', help: 'skip the optimization (vertex moves and flips judged in 3D)' },
       {
         name: '--no-attributes',
@@ -459,6 +467,7 @@ const commands: Record<string, Command> = {
         forceTopologyDefect: args.flags.has('--force-topology-defect'),
         optimizeIterations: integerFlag(args, '--optimize-iterations'),
         optimizeTolerance: numberFlag(args, '--optimize-tolerance'),
+        threads: integerFlag(args, '--threads'),
         boundary: boundaryFlag(args),
         // as the native CLI: values below 1 are passed as 0 (InvalidArgument, never "unlimited")
         maxTriangles: Math.max(0, Math.min(numberFlag(args, '--max-triangles'), 1e18)),

@@ -354,6 +354,12 @@ export interface RemeshOptions {
   optimizeIterations?: number;
   /** Stop when a pass gains less than this fraction of the mean min angle (default 1e-3). */
   optimizeTolerance?: number;
+  /**
+   * Threads over the patches and the report's distances, an integer in [0, 1024]; 0 (default) the
+   * hardware's concurrency. The output is the same for every count. The WebAssembly build has no
+   * threads: it accepts the option and runs on one.
+   */
+  threads?: number;
   /** Sampled two-sided Hausdorff distance in the report; default true. */
   computeHausdorff?: boolean;
   hausdorffSamples?: number;

@@ -127,6 +127,10 @@ std::vector<Flag> flags() {
        num(d.optimizeIterations)},
       {"--optimize-tolerance", "T", "stop optimizing when a pass gains less than this fraction of the mean min angle",
        num(d.optimizeTolerance)},
+      {"--threads", "N",
+       "threads over the patches and the report's distances, an integer >= 0; 0: the hardware's concurrency; "
+       "the output is the same for every count",
+       num(d.threads)},
       {"--no-optimize", "", "skip the optimization (vertex moves and flips judged in 3D)", ""},
       {"--no-attributes", "",
        "drop the input's uvs, normals, colours and other vertex data instead of interpolating them onto the "
@@ -170,6 +174,9 @@ int run(const std::vector<std::string>& argv) {
       fail(Code::InvalidArgument, Stage::Api, "option --optimize-iterations needs an integer");
     opt.optimizeIterations = std::abs(iterations) <= 1e6 ? int(iterations) : -1;
     opt.optimizeTolerance = args.number("--optimize-tolerance", opt.optimizeTolerance);
+    const double threads = args.number("--threads", opt.threads);
+    if (threads != std::floor(threads)) fail(Code::InvalidArgument, Stage::Api, "option --threads needs an integer");
+    opt.threads = std::abs(threads) <= 1e6 ? int(threads) : -1;
     opt.boundary = boundaryFlag(args, boundaryFlagValue(opt.boundary));
     // limits: 0 and negative values are rejected by remesh (InvalidArgument), never "unlimited"
     auto limit = [&](const char* flag, size_t fallback) {

@@ -1,8 +1,10 @@
 #include "remesh/flatten_patches.h"
 #include "core/constants.h"
+#include "core/parallel_for.h"
 
 #include <algorithm>
 #include <cmath>
+#include <exception>
 #include <map>
 #include <string>
 
@@ -47,15 +49,145 @@ std::vector<std::pair<uint32_t, double>> boundaryCorners(const F::Segmentation& 
   return out;
 }
 
+// The boundary conditions in the order a patch tries them: opt.boundary, then the others in
+// the order Free, Corners, Circle.
+std::vector<BoundaryCondition> conditionOrder(BoundaryCondition first) {
+  std::vector<BoundaryCondition> order = {first};
+  for (BoundaryCondition bc : {BoundaryCondition::Free, BoundaryCondition::Corners, BoundaryCondition::Circle})
+    if (bc != first) order.push_back(bc);
+  return order;
+}
+
+const char* conditionName(BoundaryCondition bc) {
+  return bc == BoundaryCondition::Free ? "free" : bc == BoundaryCondition::Corners ? "corner-preserving" : "round (circle)";
+}
+
+// One patch's flattening, made apart from the others (on any thread; it reads the surface only).
+// The patch is split instead when its first boundary condition fails or its scale factors spread
+// too far, but whether a split is made depends on the segmentation, which the splits change: that
+// is decided in patch order by flattenPatches, and a split patch's flattening is dropped.
+struct Flattening {
+  std::unique_ptr<PatchWork> w;
+  std::exception_ptr error;  // thrown at the patch's turn, as a serial loop would
+  std::vector<std::pair<uint32_t, double>> corners;  // the corner-preserving condition's corners
+  bool cornersTried = false;  // corners was computed (from the segmentation: a split can change it)
+  size_t next = 0;           // the boundary conditions tried: order[0, next)
+  bool flattened = false;    // by order[next - 1]
+  bool splitAsked = false;   // its first condition failed and the patch is big enough to split
+  bool scaleSplit = false;   // flattened, with scale factors spreading more than maxScaleRatio
+  std::string lastError;
+};
+
+// Try the boundary conditions order[f.next...] on f.w->pm until one works; stop after a failure of
+// order.front() when the patch may be split then (f.splitAsked). Errors of the flattening are
+// kept in f.lastError; a cancel is thrown.
+void tryConditions(const F::Segmentation& seg, const std::vector<BoundaryCondition>& order, size_t faces, Flattening& f) {
+  while (f.next < order.size() && !f.flattened) {
+    const BoundaryCondition bc = order[f.next++];
+    FlattenOptions fo;
+    fo.boundary = bc;
+    if (bc == BoundaryCondition::Corners) {
+      f.corners = boundaryCorners(seg, f.w->pm);
+      f.cornersTried = true;
+      if (f.corners.empty()) continue;
+      fo.corners = f.corners;
+    }
+    try {
+      f.w->flat = flatten(f.w->pm.mesh, fo);
+      f.flattened = true;
+    } catch (const Error& e) {
+      if (e.code() == Code::Cancelled) throw;
+      f.lastError = e.what();
+      // the free boundary failed (its layout overlaps itself): smaller parts are closer to
+      // developable and keep the least distorting map; split while the patch is big enough
+      if (bc == order.front() && faces >= kMinSplitFaces) {
+        f.splitAsked = true;
+        return;
+      }
+    }
+  }
+}
+
+// Planar/3D scale and 3D target size per sub vertex of a flattened patch, the scale from the
+// areas of the input faces around the vertex. True when the scale spreads more than maxScaleRatio.
+bool scaleAndSize(const Surface& surf, const RemeshOptions& opt, PatchWork& w) {
+  const size_t nv = w.pm.vertexInput.size();
+  std::vector<double> a2(nv, 0.0), a3(nv, 0.0);
+  const auto& uv = w.flat.uv;
+  for (size_t f = 0; f < w.pm.faceInput.size(); ++f) {
+    const uint32_t* t = &w.pm.mesh.triangles[3 * f];
+    double ax = uv[2 * t[1]] - uv[2 * t[0]], ay = uv[2 * t[1] + 1] - uv[2 * t[0] + 1];
+    double bx = uv[2 * t[2]] - uv[2 * t[0]], by = uv[2 * t[2] + 1] - uv[2 * t[0] + 1];
+    double area2 = std::abs(ax * by - ay * bx) * 0.5, area3 = surf.g.faceArea(w.pm.faceInput[f]);
+    for (int c = 0; c < 3; ++c) a2[t[c]] += area2, a3[t[c]] += area3;
+  }
+  w.scaleSub.resize(nv);
+  w.hSub.resize(nv);
+  double smin = INFINITY, smax = 0;
+  for (size_t v = 0; v < nv; ++v) {
+    w.scaleSub[v] = a3[v] > 0 ? std::sqrt(a2[v] / a3[v]) : 1.0;
+    w.hSub[v] = surf.sizing.h[w.pm.vertexInput[v]];
+    smin = std::min(smin, w.scaleSub[v]);
+    smax = std::max(smax, w.scaleSub[v]);
+  }
+  return smax > opt.maxScaleRatio * smin;
+}
+
+// The patch of input faces `faces` extracted (cut open along `mask`) and flattened up to where a
+// split may be made (Flattening).
+Flattening flattenOne(const Surface& surf, const RemeshOptions& opt, const std::vector<uint8_t>& mask,
+                      const std::vector<uint32_t>& faces) {
+  Flattening f;
+  try {
+    f.w = std::make_unique<PatchWork>();
+    f.w->pm = F::extractPatch(surf.g, mask, faces);
+    if (!f.w->pm.isDisk()) fail(Code::InternalError, Stage::Flatten, "a patch is not a disk after cutting");
+    tryConditions(surf.seg, conditionOrder(opt.boundary), faces.size(), f);
+    if (f.flattened) f.scaleSplit = scaleAndSize(surf, opt, *f.w);
+  } catch (...) {
+    f.error = std::current_exception();
+  }
+  return f;
+}
+
+bool samePatchMesh(const F::PatchMesh& a, const F::PatchMesh& b) {
+  if (a.boundaryLoops.size() != b.boundaryLoops.size()) return false;
+  for (size_t l = 0; l < a.boundaryLoops.size(); ++l) {
+    const auto &x = a.boundaryLoops[l], &y = b.boundaryLoops[l];
+    if (x.size() != y.size()) return false;
+    for (size_t k = 0; k < x.size(); ++k)
+      if (x[k].face != y[k].face || x[k].corner != y[k].corner) return false;
+  }
+  return a.mesh.positions == b.mesh.positions && a.mesh.triangles == b.mesh.triangles && a.faceInput == b.faceInput &&
+         a.vertexInput == b.vertexInput && a.eulerCharacteristic == b.eulerCharacteristic && a.pinched == b.pinched;
+}
+
+// A flattening made before a split elsewhere is the one the patch gets now when its extraction is
+// the same and so are the corners its corner-preserving condition used (a split can add corners).
+bool stillValid(const Surface& surf, const std::vector<uint8_t>& mask, const std::vector<uint32_t>& faces, const Flattening& f) {
+  if (f.error || !f.w) return false;
+  const F::PatchMesh pm = F::extractPatch(surf.g, mask, faces);
+  if (!samePatchMesh(pm, f.w->pm)) return false;
+  return !f.cornersTried || boundaryCorners(surf.seg, pm) == f.corners;
+}
+
 }  // namespace
 
 Patches flattenPatches(Surface& surf, const RemeshOptions& opt, const Progress& progress, RemeshReport& rep) {
   // flattened patches by their exact face set: splitting a patch can reroute the cuts of its
   // neighbours (improveCutJunctions), which changes their faces and so their flattening
   std::map<std::vector<uint32_t>, std::unique_ptr<PatchWork>> cache;
+  // flattenings made after the first split of a round, checked before use in the next (stillValid)
+  std::map<std::vector<uint32_t>, Flattening> spare;
   auto keyOf = [](std::vector<uint32_t> faces) {
     std::sort(faces.begin(), faces.end());
     return faces;
+  };
+  const std::vector<BoundaryCondition> order = conditionOrder(opt.boundary);
+  double reported = 0;  // progress stays monotone across the parallel and the ordered part
+  const auto advance = [&](double f) {
+    reported = std::max(reported, f);
+    progress.check(Stage::Flatten, reported);
   };
   // each round flattens what is new and splits at most one patch: the rounds are capped by the
   // patches the segmentation may make (a split that undoes another would otherwise cycle)
@@ -65,94 +197,74 @@ Patches flattenPatches(Surface& surf, const RemeshOptions& opt, const Progress& 
       fail(Code::IterationLimit, Stage::Flatten,
            "splitting patches for their scale factor did not settle (" + std::to_string(surf.seg.patches.size()) + " patches after " +
                std::to_string(round) + " rounds)");
-    auto mask = surf.seg.curveMask();
-    bool split = false;
-    for (uint32_t p = 0; p < surf.seg.patches.size() && !split; ++p) {
-      const auto& faces = surf.seg.patches[p];
-      auto key = keyOf(faces);
+    const auto mask = surf.seg.curveMask();
+    // the patches not flattened yet, each flattened apart (in parallel) ...
+    std::vector<uint32_t> todo;
+    std::vector<Flattening> made;
+    for (uint32_t p = 0; p < surf.seg.patches.size(); ++p) {
+      auto key = keyOf(surf.seg.patches[p]);
       if (cache.count(key)) continue;
-      auto w = std::make_unique<PatchWork>();
-      w->pm = F::extractPatch(surf.g, mask, faces);
-      if (!w->pm.isDisk()) fail(Code::InternalError, Stage::Flatten, "a patch is not a disk after cutting");
-      // Boundary conditions, least distorting first. Free (u = 0 on the boundary): isometric
-      // on developable patches, so planar angles are 3D angles and corners keep theirs; its
-      // layout can overlap itself on strongly curved patches. Then corner-preserving (corners
-      // keep their 3D angle, the sides bend), then the round disk (always embedded).
-      std::vector<BoundaryCondition> order = {opt.boundary};
-      for (BoundaryCondition bc : {BoundaryCondition::Free, BoundaryCondition::Corners, BoundaryCondition::Circle})
-        if (bc != opt.boundary) order.push_back(bc);
-      bool flattened = false;
-      std::string lastError;
-      for (BoundaryCondition bc : order) {
-        FlattenOptions fo;
-        fo.boundary = bc;
-        if (bc == BoundaryCondition::Corners) {
-          fo.corners = boundaryCorners(surf.seg, w->pm);
-          if (fo.corners.empty()) continue;
-        }
-        try {
-          w->flat = flatten(w->pm.mesh, fo);
-          flattened = true;
-          if (bc != order.front())
-            rep.warnings.push_back(std::string("patch flattened with the ") +
-                                    (bc == BoundaryCondition::Free      ? "free"
-                                     : bc == BoundaryCondition::Corners ? "corner-preserving"
-                                                                        : "round (circle)") +
-                                    " boundary condition after: " + lastError + " [patch of " + std::to_string(faces.size()) + " faces]");
-          break;
-        } catch (const Error& e) {
-          if (e.code() == Code::Cancelled) throw;
-          lastError = e.what();
-          // the free boundary failed (its layout overlaps itself): smaller parts are closer to
-          // developable and keep the least distorting map; split while the patch is big enough
-          if (bc == order.front() && faces.size() >= kMinSplitFaces && F::splitPatch(surf.g, surf.seg, p)) {
-            ++rep.patchSplitsForScale;
-            rep.warnings.push_back("patch split after its first boundary condition failed: " + lastError);
-            split = true;
-            break;
-          }
-        }
+      todo.push_back(p);
+      auto it = spare.find(key);
+      made.emplace_back();
+      if (it != spare.end() && stillValid(surf, mask, surf.seg.patches[p], it->second)) made.back() = std::move(it->second);
+    }
+    spare.clear();
+    const double total = double(surf.seg.patches.size() + 1);
+    std::vector<double> cost(todo.size());
+    for (size_t i = 0; i < todo.size(); ++i) cost[i] = made[i].w ? 0.0 : double(surf.seg.patches[todo[i]].size());
+    const std::vector<size_t> byCost = largestFirst(cost);
+    parallelFor(
+        todo.size(), unsigned(opt.threads),
+        [&](size_t k) {
+          const size_t i = byCost[k];
+          if (!made[i].w) made[i] = flattenOne(surf, opt, mask, surf.seg.patches[todo[i]]);
+        },
+        [&](size_t done) { advance(double(cache.size() + done) / total); });
+    // ... then taken in patch order, as a serial loop would: the first patch that is split ends
+    // the round (the segmentation changes), and the flattenings after it are kept for the next
+    bool split = false;
+    for (size_t i = 0; i < todo.size(); ++i) {
+      const uint32_t p = todo[i];
+      const auto& faces = surf.seg.patches[p];
+      Flattening& f = made[i];
+      if (split) {
+        spare.emplace(keyOf(faces), std::move(f));
+        continue;
       }
-      if (split) break;
-      if (!flattened) {
+      if (f.error) std::rethrow_exception(f.error);
+      if (f.splitAsked) {
+        if (F::splitPatch(surf.g, surf.seg, p)) {
+          ++rep.patchSplitsForScale;
+          rep.warnings.push_back("patch split after its first boundary condition failed: " + f.lastError);
+          split = true;
+          continue;
+        }
+        // no split to be had: the other conditions
+        f.splitAsked = false;
+        tryConditions(surf.seg, order, 0, f);
+        if (f.flattened) f.scaleSplit = scaleAndSize(surf, opt, *f.w);
+      }
+      if (!f.flattened) {
         // every boundary condition failed (a layout that overlaps itself or a flow that stalls):
         // split the patch and retry
         if (faces.size() < kMinSplitFaces || !F::splitPatch(surf.g, surf.seg, p))
-          fail(Code::NumericalFailure, Stage::Flatten, "patch " + std::to_string(p) + " could not be flattened: " + lastError);
+          fail(Code::NumericalFailure, Stage::Flatten, "patch " + std::to_string(p) + " could not be flattened: " + f.lastError);
         ++rep.patchSplitsForScale;
-        rep.warnings.push_back("patch split after a flattening failure: " + lastError);
+        rep.warnings.push_back("patch split after a flattening failure: " + f.lastError);
         split = true;
-        break;
+        continue;
       }
-      // planar/3D scale per sub vertex from the areas of the input faces around it
-      const size_t nv = w->pm.vertexInput.size();
-      std::vector<double> a2(nv, 0.0), a3(nv, 0.0);
-      const auto& uv = w->flat.uv;
-      for (size_t f = 0; f < w->pm.faceInput.size(); ++f) {
-        const uint32_t* t = &w->pm.mesh.triangles[3 * f];
-        double ax = uv[2 * t[1]] - uv[2 * t[0]], ay = uv[2 * t[1] + 1] - uv[2 * t[0] + 1];
-        double bx = uv[2 * t[2]] - uv[2 * t[0]], by = uv[2 * t[2] + 1] - uv[2 * t[0] + 1];
-        double area2 = std::abs(ax * by - ay * bx) * 0.5, area3 = surf.g.faceArea(w->pm.faceInput[f]);
-        for (int c = 0; c < 3; ++c) a2[t[c]] += area2, a3[t[c]] += area3;
+      if (f.next > 1)
+        rep.warnings.push_back(std::string("patch flattened with the ") + conditionName(order[f.next - 1]) +
+                               " boundary condition after: " + f.lastError + " [patch of " + std::to_string(faces.size()) + " faces]");
+      if (f.scaleSplit && faces.size() >= kMinSplitFaces && F::splitPatch(surf.g, surf.seg, p)) {
+        ++rep.patchSplitsForScale;
+        split = true;
+        continue;
       }
-      w->scaleSub.resize(nv);
-      w->hSub.resize(nv);
-      double smin = INFINITY, smax = 0;
-      for (size_t v = 0; v < nv; ++v) {
-        w->scaleSub[v] = a3[v] > 0 ? std::sqrt(a2[v] / a3[v]) : 1.0;
-        w->hSub[v] = surf.sizing.h[w->pm.vertexInput[v]];
-        smin = std::min(smin, w->scaleSub[v]);
-        smax = std::max(smax, w->scaleSub[v]);
-      }
-      if (smax > opt.maxScaleRatio * smin && faces.size() >= kMinSplitFaces) {
-        if (F::splitPatch(surf.g, surf.seg, p)) {
-          ++rep.patchSplitsForScale;
-          split = true;
-          break;
-        }
-      }
-      cache.emplace(key, std::move(w));
-      progress.check(Stage::Flatten, double(cache.size()) / double(surf.seg.patches.size() + 1));
+      cache.emplace(keyOf(faces), std::move(f.w));
+      advance(double(cache.size()) / total);
     }
     if (split) continue;
     Patches work;

@@ -30,6 +30,7 @@ void checkOptions(const RemeshOptions& opt) {
   if (!(opt.maxScaleRatio > 1)) fail(Code::InvalidArgument, Stage::Api, "maxScaleRatio must be > 1");
   if (opt.optimizeIterations < 0 || opt.optimizeIterations > 1000)
     fail(Code::InvalidArgument, Stage::Api, "optimizeIterations must be in [0, 1000]");
+  if (opt.threads < 0 || opt.threads > 1024) fail(Code::InvalidArgument, Stage::Api, "threads must be in [0, 1024]");
   if (!(opt.optimizeTolerance >= 0)) fail(Code::InvalidArgument, Stage::Api, "optimizeTolerance must be >= 0");
   if (!(opt.maxError >= 0 && opt.maxError < INFINITY)) fail(Code::InvalidArgument, Stage::Api, "maxError must be finite and >= 0");
   if (!(opt.maxErrorRel >= 0 && opt.maxErrorRel < INFINITY))

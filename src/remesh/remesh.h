@@ -99,6 +99,11 @@ struct RemeshOptions {
   //! Two-sided Hausdorff distance in the report (sampled; costs time on big meshes).
   bool computeHausdorff = true;
   size_t hausdorffSamples = 50000;
+  //! Threads over the patches (flattening, refinement, lift, optimization) and over the report's
+  //! distances to the input (core/parallel_for.h): 0 (default) the hardware's concurrency, 1 serial,
+  //! at most 1024. The output and the report but its seconds are the same for every count. Always
+  //! 1 in the WebAssembly build.
+  int threads = 0;
   //! Output limits (remesh/limits.h). Before flattening and refinement, the output size and the
   //! peak memory are predicted from the sizing field; after refinement the real counts are
   //! checked. Exceeding a limit fails with TooLarge (message: the estimate or count, and the
