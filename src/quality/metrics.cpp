@@ -1,12 +1,14 @@
 #include "quality/metrics.h"
 #include "core/constants.h"
 #include "core/detmath.h"
+#include "core/parallel_for.h"
 #include "core/triangle_corner.h"
 #include "core/union_find.h"
 
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <memory>
 
 namespace conformesh::quality {
 
@@ -159,6 +161,10 @@ void oneSidedWithMean(const std::vector<Vec3>& pts, const TriangleMeshDistance& 
   meanD = pts.empty() ? 0 : sum / double(pts.size());
 }
 
+// Points per chunk of oneSidedMax: each chunk has its own running max and hint, and chunks of a
+// fixed size make the searches the same for every thread count.
+constexpr size_t kChunk = 4096;
+
 //! Max distance from points to a mesh, the same value as oneSidedWithMean's, by early breaking
 //! (Taha & Hanbury 2015, "An efficient algorithm for calculating the exact Hausdorff distance",
 //! IEEE TPAMI 37(11)): a point can raise the running max only if every triangle is farther than
@@ -169,8 +175,10 @@ void oneSidedWithMean(const std::vector<Vec3>& pts, const TriangleMeshDistance& 
 //! Morton curve (each near its predecessor, so the hint is often close enough), and a first pass
 //! over every kStride-th of them (spread over the whole surface) sets a running max near the
 //! final one, so that most of the others break at once (Taha and Hanbury shuffle the points for
-//! this).
-double oneSidedMax(const std::vector<Vec3>& pts, const TriangleMeshDistance& target,
+//! this). Both passes run in chunks of kChunk consecutive points on up to `threads` threads, each
+//! chunk from the first pass's max with a running max of its own: the max of the chunks' maxima
+//! is the max over every point, whatever order the chunks run in.
+double oneSidedMax(const std::vector<Vec3>& pts, const TriangleMeshDistance& target, unsigned threads,
                    const std::vector<int64_t>& pointHints = {}) {
   constexpr size_t kStride = 16;
   Box3 box;
@@ -179,23 +187,36 @@ double oneSidedMax(const std::vector<Vec3>& pts, const TriangleMeshDistance& tar
   std::vector<std::pair<uint64_t, uint32_t>> order(pts.size());
   for (size_t i = 0; i < pts.size(); ++i) order[i] = {grid.code(pts[i]), uint32_t(i)};
   MortonGrid::sort(order);
-  double worst = 0;  // squared
-  int64_t hint = -1;
   // a point's own hint (a triangle near a vertex, given by the caller) before its predecessor's
-  auto hintOf = [&](uint32_t i) { return i < pointHints.size() && pointHints[i] >= 0 ? pointHints[i] : hint; };
-  for (size_t i = 0; i < order.size(); i += kStride) {
-    const ClosestHit hit = target.closest(pts[order[i].second], hintOf(order[i].second));
-    if (hit.primitive < 0) continue;  // no valid triangle in the target: 0, as oneSidedWithMean
-    hint = hit.primitive;
-    worst = std::max(worst, hit.distanceSquared);
-  }
-  for (size_t i = 0; i < order.size(); ++i) {
-    if (i % kStride == 0) continue;
-    const ClosestHit hit = target.closest(pts[order[i].second], hintOf(order[i].second), worst);
-    if (hit.primitive < 0) continue;
-    hint = hit.primitive;
-    worst = std::max(worst, hit.distanceSquared);
-  }
+  auto hintOf = [&](uint32_t i, int64_t previous) {
+    return i < pointHints.size() && pointHints[i] >= 0 ? pointHints[i] : previous;
+  };
+  // the points at positions [from, to) of `order` with a step, from a running max (squared)
+  auto pass = [&](size_t from, size_t to, size_t step, bool strided, double worst) {
+    int64_t hint = -1;
+    for (size_t i = from; i < to; i += step) {
+      if (!strided && i % kStride == 0) continue;
+      const Vec3& p = pts[order[i].second];
+      const ClosestHit hit = strided ? target.closest(p, hintOf(order[i].second, hint))
+                                     : target.closest(p, hintOf(order[i].second, hint), worst);
+      if (hit.primitive < 0) continue;  // no valid triangle in the target: 0, as oneSidedWithMean
+      hint = hit.primitive;
+      worst = std::max(worst, hit.distanceSquared);
+    }
+    return worst;
+  };
+  const size_t n = order.size(), span = kChunk * kStride;
+  std::vector<double> firstWorst((n + span - 1) / span, 0.0);
+  parallelFor(firstWorst.size(), threads, [&](size_t c) {
+    firstWorst[c] = pass(c * span, std::min(n, (c + 1) * span), kStride, true, 0.0);
+  });
+  double worst = 0;  // squared
+  for (double w : firstWorst) worst = std::max(worst, w);
+  std::vector<double> chunkWorst((n + kChunk - 1) / kChunk, worst);
+  parallelFor(chunkWorst.size(), threads, [&](size_t c) {
+    chunkWorst[c] = pass(c * kChunk, std::min(n, (c + 1) * kChunk), 1, false, worst);
+  });
+  for (double w : chunkWorst) worst = std::max(worst, w);
   return std::sqrt(worst);
 }
 
@@ -503,8 +524,11 @@ std::vector<Vec3> surfaceSamples(const MeshBuffers& m, size_t count, uint64_t se
 HausdorffResult hausdorffDistance(const MeshBuffers& a, const MeshBuffers& b, const HausdorffOptions& options) {
   HausdorffResult r;
   r.diagonal = boundingBox(b).diagonal();
-  std::vector<Vec3> sa = surfaceSamples(a, options.samplesPerSide, options.seed);
-  std::vector<Vec3> sb = surfaceSamples(b, options.samplesPerSide, options.seed + 1);
+  std::vector<Vec3> sa, sb;
+  parallelFor(2, options.threads, [&](size_t side) {
+    if (side == 0) sa = surfaceSamples(a, options.samplesPerSide, options.seed);
+    else sb = surfaceSamples(b, options.samplesPerSide, options.seed + 1);
+  });
   r.samplesA = sa.size();
   r.samplesB = sb.size();
   if (options.computeMean) {
@@ -522,8 +546,13 @@ HausdorffResult hausdorffDistance(const MeshBuffers& a, const MeshBuffers& b, co
       for (size_t v = 0; v < a.vertexCount(); ++v)
         if (used[v]) hintsA.push_back((*near)[v] < b.triangleCount() ? int64_t((*near)[v]) : -1);
     }
-    r.aToB = oneSidedMax(sa, TriangleMeshDistance(b, AabbSplit::Morton), hintsA);
-    r.bToA = oneSidedMax(sb, TriangleMeshDistance(a, AabbSplit::Morton));
+    std::unique_ptr<TriangleMeshDistance> toB, toA;
+    parallelFor(2, options.threads, [&](size_t side) {
+      if (side == 0) toB = std::make_unique<TriangleMeshDistance>(b, AabbSplit::Morton);
+      else toA = std::make_unique<TriangleMeshDistance>(a, AabbSplit::Morton);
+    });
+    r.aToB = oneSidedMax(sa, *toB, options.threads, hintsA);
+    r.bToA = oneSidedMax(sb, *toA, options.threads);
     r.meanAToB = r.meanBToA = -1;
   }
   r.hausdorff = std::max(r.aToB, r.bToA);

@@ -117,6 +117,10 @@ struct HausdorffOptions {
   //! triangle of B likely near it, e.g. the remesher's input face of each output vertex (an
   //! index ≥ B's triangle count: none). Ignored unless it has one entry per vertex of A.
   const std::vector<uint32_t>* nearTriangleOfVertexA = nullptr;
+  //! Threads for the maxima (core/parallel_for.h; 0: the hardware's concurrency). The samples
+  //! are searched in chunks of a fixed size, each with a running max of its own: the same
+  //! searches and the same maxima for every count.
+  unsigned threads = 1;
 };
 
 //! The points a Hausdorff distance is measured from on mesh m: every referenced vertex (in index
@@ -141,8 +145,8 @@ std::vector<Vec3> surfaceSamples(const MeshBuffers& m, size_t count, uint64_t se
 //! Hanbury 2015, "An efficient algorithm for calculating the exact Hausdorff distance", IEEE TPAMI
 //! 37(11)), so the maxima are those of the full search, found in a fraction of its time.
 //! `diagonal` is B's bounding-box diagonal (B is the reference, normally the input) and
-//! `relative` = hausdorff / diagonal. Single-threaded and deterministic: the same value natively
-//! and in WASM, run after run.
+//! `relative` = hausdorff / diagonal. Deterministic: the same value natively and in WASM, run
+//! after run, on any number of threads.
 struct HausdorffResult {
   double aToB = 0, bToA = 0;          //!< max one-sided distances
   double meanAToB = 0, meanBToA = 0;  //!< mean one-sided distances (−1 without computeMean)

@@ -6,11 +6,15 @@
 #include <string>
 #include <unordered_map>
 
+#include "core/parallel_for.h"
 #include "quality/metrics.h"
 
 namespace conformesh::pipeline {
 namespace {
 
+// Output vertices per chunk of the distance to the input (a fixed size: the same searches for
+// every thread count).
+constexpr size_t kDistanceChunk = 4096;
 
 //! How the output's topology differs from the input's ("Euler characteristic 3 vs 2, 1
 //! non-manifold edge"), or "" when it has the input's components, boundary loops and Euler
@@ -123,26 +127,36 @@ Status reportOutput(const Surface& surf, const CurveSamples& cs, const MeshBuffe
   rep.curveSamples = cs.cm.samples.size();
   {
     quality::TriangleMeshDistance dist(in);
-    double worst = 0;
-    int64_t hint = -1;  // consecutive output vertices are near each other (curves, then patches)
-    for (size_t v = 0; v < out.vertexCount(); ++v) {
-      const quality::Vec3 p{out.positions[3 * v], out.positions[3 * v + 1], out.positions[3 * v + 2]};
-      // the input face the vertex was lifted onto (or one beside its curve sample) bounds its
-      // distance: at most the worst so far, the vertex cannot change the maximum
-      if (vertexFace[v] < in.triangleCount()) {
-        hint = vertexFace[v];
-        if (dist.faceDistanceSquared(vertexFace[v], p) <= worst) continue;
+    // in chunks of a fixed size, each with its own running max: the same searches on any number
+    // of threads, and the max of the chunks' maxima is the max over every vertex
+    const size_t nv = out.vertexCount();
+    std::vector<double> chunkWorst((nv + kDistanceChunk - 1) / kDistanceChunk, 0.0);
+    parallelFor(chunkWorst.size(), unsigned(opt.threads), [&](size_t c) {
+      double worst = 0;
+      int64_t hint = -1;  // consecutive output vertices are near each other (curves, then patches)
+      for (size_t v = c * kDistanceChunk; v < std::min(nv, (c + 1) * kDistanceChunk); ++v) {
+        const quality::Vec3 p{out.positions[3 * v], out.positions[3 * v + 1], out.positions[3 * v + 2]};
+        // the input face the vertex was lifted onto (or one beside its curve sample) bounds its
+        // distance: at most the worst so far, the vertex cannot change the maximum
+        if (vertexFace[v] < in.triangleCount()) {
+          hint = vertexFace[v];
+          if (dist.faceDistanceSquared(vertexFace[v], p) <= worst) continue;
+        }
+        auto hit = dist.closest(p, hint);
+        hint = hit.primitive;
+        worst = std::max(worst, hit.distanceSquared);
       }
-      auto hit = dist.closest(p, hint);
-      hint = hit.primitive;
-      worst = std::max(worst, hit.distanceSquared);
-    }
+      chunkWorst[c] = worst;
+    });
+    double worst = 0;
+    for (double w : chunkWorst) worst = std::max(worst, w);
     rep.maxDistanceToInputRel = std::sqrt(worst) / surf.sizing.diagonal;
   }
   if (opt.computeHausdorff) {
     quality::HausdorffOptions ho;
     ho.samplesPerSide = opt.hausdorffSamples;
-    ho.nearTriangleOfVertexA = &vertexFace;  // the input face each output vertex was lifted onto: a start
+    ho.nearTriangleOfVertexA = &vertexFace;
+    ho.threads = unsigned(opt.threads);  // the input face each output vertex was lifted onto: a start
     rep.hausdorffRel = quality::hausdorffDistance(out, in, ho).relative;
   }
   return topologyStatus;
