@@ -184,6 +184,12 @@ Patches flattenPatches(Surface& surf, const RemeshOptions& opt, const Progress& 
     return faces;
   };
   const std::vector<BoundaryCondition> order = conditionOrder(opt.boundary);
+  // Patches are flattened a window ahead of the patch order. A split ends the round, and the
+  // flattenings after it are mostly lost (the next round's extraction of a patch differs, if only
+  // in its face order): the window bounds that loss, one thread none, while 4 patches per thread
+  // are enough to balance them.
+  const unsigned threads = resolveThreads(unsigned(opt.threads));
+  const size_t window = threads <= 1 ? 1 : 4 * size_t(threads);
   double reported = 0;  // progress stays monotone across the parallel and the ordered part
   const auto advance = [&](double f) {
     reported = std::max(reported, f);
@@ -198,7 +204,7 @@ Patches flattenPatches(Surface& surf, const RemeshOptions& opt, const Progress& 
            "splitting patches for their scale factor did not settle (" + std::to_string(surf.seg.patches.size()) + " patches after " +
                std::to_string(round) + " rounds)");
     const auto mask = surf.seg.curveMask();
-    // the patches not flattened yet, each flattened apart (in parallel) ...
+    // the patches not flattened yet, in patch order
     std::vector<uint32_t> todo;
     std::vector<Flattening> made;
     for (uint32_t p = 0; p < surf.seg.patches.size(); ++p) {
@@ -211,60 +217,65 @@ Patches flattenPatches(Surface& surf, const RemeshOptions& opt, const Progress& 
     }
     spare.clear();
     const double total = double(surf.seg.patches.size() + 1);
-    std::vector<double> cost(todo.size());
-    for (size_t i = 0; i < todo.size(); ++i) cost[i] = made[i].w ? 0.0 : double(surf.seg.patches[todo[i]].size());
-    const std::vector<size_t> byCost = largestFirst(cost);
-    parallelFor(
-        todo.size(), unsigned(opt.threads),
-        [&](size_t k) {
-          const size_t i = byCost[k];
-          if (!made[i].w) made[i] = flattenOne(surf, opt, mask, surf.seg.patches[todo[i]]);
-        },
-        [&](size_t done) { advance(double(cache.size() + done) / total); });
-    // ... then taken in patch order, as a serial loop would: the first patch that is split ends
-    // the round (the segmentation changes), and the flattenings after it are kept for the next
     bool split = false;
-    for (size_t i = 0; i < todo.size(); ++i) {
-      const uint32_t p = todo[i];
-      const auto& faces = surf.seg.patches[p];
-      Flattening& f = made[i];
-      if (split) {
-        spare.emplace(keyOf(faces), std::move(f));
-        continue;
-      }
-      if (f.error) std::rethrow_exception(f.error);
-      if (f.splitAsked) {
-        if (F::splitPatch(surf.g, surf.seg, p)) {
+    for (size_t from = 0; from < todo.size() && !split; from += window) {
+      // the next window of them flattened apart, on the threads (largest first) ...
+      const size_t to = std::min(todo.size(), from + window);
+      std::vector<double> cost(to - from);
+      for (size_t i = from; i < to; ++i) cost[i - from] = made[i].w ? 0.0 : double(surf.seg.patches[todo[i]].size());
+      const std::vector<size_t> byCost = largestFirst(cost);
+      const size_t before = cache.size();
+      parallelFor(
+          to - from, unsigned(opt.threads),
+          [&](size_t k) {
+            const size_t i = from + byCost[k];
+            if (!made[i].w) made[i] = flattenOne(surf, opt, mask, surf.seg.patches[todo[i]]);
+          },
+          [&](size_t done) { advance(double(before + done) / total); });
+      // ... then taken in patch order, as a serial loop would: the first patch that is split ends
+      // the round (the segmentation changes), and the flattenings after it are kept for the next
+      for (size_t i = from; i < to; ++i) {
+        const uint32_t p = todo[i];
+        const auto& faces = surf.seg.patches[p];
+        Flattening& f = made[i];
+        if (split) {
+          spare.emplace(keyOf(faces), std::move(f));
+          continue;
+        }
+        if (f.error) std::rethrow_exception(f.error);
+        if (f.splitAsked) {
+          if (F::splitPatch(surf.g, surf.seg, p)) {
+            ++rep.patchSplitsForScale;
+            rep.warnings.push_back("patch split after its first boundary condition failed: " + f.lastError);
+            split = true;
+            continue;
+          }
+          // no split to be had: the other conditions
+          f.splitAsked = false;
+          tryConditions(surf.seg, order, 0, f);
+          if (f.flattened) f.scaleSplit = scaleAndSize(surf, opt, *f.w);
+        }
+        if (!f.flattened) {
+          // every boundary condition failed (a layout that overlaps itself or a flow that stalls):
+          // split the patch and retry
+          if (faces.size() < kMinSplitFaces || !F::splitPatch(surf.g, surf.seg, p))
+            fail(Code::NumericalFailure, Stage::Flatten, "patch " + std::to_string(p) + " could not be flattened: " + f.lastError);
           ++rep.patchSplitsForScale;
-          rep.warnings.push_back("patch split after its first boundary condition failed: " + f.lastError);
+          rep.warnings.push_back("patch split after a flattening failure: " + f.lastError);
           split = true;
           continue;
         }
-        // no split to be had: the other conditions
-        f.splitAsked = false;
-        tryConditions(surf.seg, order, 0, f);
-        if (f.flattened) f.scaleSplit = scaleAndSize(surf, opt, *f.w);
+        if (f.next > 1)
+          rep.warnings.push_back(std::string("patch flattened with the ") + conditionName(order[f.next - 1]) +
+                                 " boundary condition after: " + f.lastError + " [patch of " + std::to_string(faces.size()) + " faces]");
+        if (f.scaleSplit && faces.size() >= kMinSplitFaces && F::splitPatch(surf.g, surf.seg, p)) {
+          ++rep.patchSplitsForScale;
+          split = true;
+          continue;
+        }
+        cache.emplace(keyOf(faces), std::move(f.w));
+        advance(double(cache.size()) / total);
       }
-      if (!f.flattened) {
-        // every boundary condition failed (a layout that overlaps itself or a flow that stalls):
-        // split the patch and retry
-        if (faces.size() < kMinSplitFaces || !F::splitPatch(surf.g, surf.seg, p))
-          fail(Code::NumericalFailure, Stage::Flatten, "patch " + std::to_string(p) + " could not be flattened: " + f.lastError);
-        ++rep.patchSplitsForScale;
-        rep.warnings.push_back("patch split after a flattening failure: " + f.lastError);
-        split = true;
-        continue;
-      }
-      if (f.next > 1)
-        rep.warnings.push_back(std::string("patch flattened with the ") + conditionName(order[f.next - 1]) +
-                               " boundary condition after: " + f.lastError + " [patch of " + std::to_string(faces.size()) + " faces]");
-      if (f.scaleSplit && faces.size() >= kMinSplitFaces && F::splitPatch(surf.g, surf.seg, p)) {
-        ++rep.patchSplitsForScale;
-        split = true;
-        continue;
-      }
-      cache.emplace(keyOf(faces), std::move(f.w));
-      advance(double(cache.size()) / total);
     }
     if (split) continue;
     Patches work;
