@@ -64,7 +64,8 @@ for (const model of models) {
   if (below && above) {
     // log-log interpolation of CGAL's count at our distance
     const s = Math.log(row.hausdorff / below.hausdorff) / Math.log(above.hausdorff / below.hausdorff);
-    row.cgalTriangles = Math.round(Math.exp(Math.log(below.triangles) + s * Math.log(above.triangles / below.triangles)));
+    const n = Math.round(Math.exp(Math.log(below.triangles) + s * Math.log(above.triangles / below.triangles)));
+    if (Number.isFinite(n)) row.cgalTriangles = n;
   } else if (below) row.cgalTrianglesAtMost = below.triangles;  // CGAL reached our distance with this many
   rows.push(row);
   console.log(model, JSON.stringify({ ...row, cgalRuns: undefined }));
@@ -74,7 +75,7 @@ const ratios = rows.map(ratio).filter((x) => x);
 const geomean = ratios.length ? Math.exp(ratios.reduce((s, x) => s + Math.log(x), 0) / ratios.length) : NaN;
 const f = (x, d) => (x === undefined || x === null ? '' : typeof x === 'number' ? x.toFixed(d) : String(x));
 const lines = [
-  `# Error-driven remeshing at --max-error-rel ${REL} against CGAL isotropic remeshing at the same measured Hausdorff distance (${new Date().toISOString().slice(0, 10)}, ${execFileSync('git', ['rev-parse', '--short', 'HEAD'], { cwd: ROOT, encoding: 'utf8' }).trim()})`,
+  `# Error-driven remeshing at --max-error-rel ${REL} against CGAL isotropic remeshing at the same measured Hausdorff distance (${new Date().toISOString().slice(0, 10)}, ${BIN}, the tree at ${execFileSync('git', ['rev-parse', '--short', 'HEAD'], { cwd: ROOT, encoding: 'utf8' }).trim()} when written)`,
   '',
   'Hausdorff distances (relative to the diagonal) and raw angles by meshq (../shared/tools/meshq.cpp); CGAL count interpolated in log-log between its runs bracketing our distance. Ours/CGAL geometric mean: ' + f(geomean, 3),
   '',
