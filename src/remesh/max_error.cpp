@@ -23,6 +23,9 @@ constexpr double kAcceptFraction = 0.9;
 // An attempt within the bound whose distance is above this fraction of it is close enough: a
 // looser tolerance would gain little.
 constexpr double kCloseEnoughFraction = 0.6;
+// The largest step of the tolerance from one attempt to the next: a distance far below the bound
+// (a flat surface: about 0) would otherwise ask for an unbounded tolerance, attempt after attempt.
+constexpr double kMaxToleranceStep = 8.0;
 
 double inputDiagonal(const MeshBuffers& m) {
   double lo[3] = {INFINITY, INFINITY, INFINITY}, hi[3] = {-INFINITY, -INFINITY, -INFINITY};
@@ -60,14 +63,15 @@ RemeshResult remeshWithinError(const MeshBuffers& input, const RemeshOptions& op
     if (distance <= kAcceptFraction * bound) {
       if (lo == 0 || r.report.triangles < best.report.triangles) best = std::move(r);
       lo = std::max(lo, factor);
-      if (distance >= kCloseEnoughFraction * bound) break;
+      // close enough, or no distance to scale by (the output lies on the input)
+      if (distance >= kCloseEnoughFraction * bound || !(distance > 0)) break;
     } else {
       hi = std::min(hi, factor);
     }
     // the chord error grows about linearly with the tolerance: aim at the accepted fraction,
     // between the factors known to be within and above the bound (geometric mean when that aim
     // falls outside them)
-    factor *= kAcceptFraction * bound / std::max(distance, 1e-300 * bound);
+    factor *= std::min(kMaxToleranceStep, kAcceptFraction * bound / std::max(distance, 1e-300 * bound));
     if (lo > 0 && hi < INFINITY && !(factor > lo && factor < hi)) factor = std::sqrt(lo * hi);
   }
   if (lo == 0) {
