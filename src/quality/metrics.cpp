@@ -112,15 +112,18 @@ Vec3 faceNormal(const MeshBuffers& m, uint32_t f) {
   return n;
 }
 
-//! Segments (vertex pairs) of interior manifold edges whose dihedral angle exceeds `angleDeg`.
-std::vector<std::pair<uint32_t, uint32_t>> featureEdges(const MeshBuffers& m, double angleDeg) {
+//! Segments (vertex pairs) of interior manifold edges whose dihedral angle exceeds `angleDeg`,
+//! in (a, b) order; with `boundary` also the edges with one face (or more than two).
+std::vector<std::pair<uint32_t, uint32_t>> featureEdges(const MeshBuffers& m, double angleDeg, bool boundary = false) {
   std::vector<std::pair<uint32_t, uint32_t>> out;
   std::vector<EdgeRef> refs = sortedEdgeRefs(m);
   double cosLimit = dmath::cos(angleDeg / kDeg);
   for (size_t i = 0; i < refs.size();) {
     size_t j = i;
     while (j < refs.size() && refs[j].a == refs[i].a && refs[j].b == refs[i].b) ++j;
-    if (j - i == 2) {
+    if (j - i != 2) {
+      if (boundary) out.emplace_back(refs[i].a, refs[i].b);
+    } else {
       Vec3 n0 = faceNormal(m, refs[i].face), n1 = faceNormal(m, refs[i + 1].face);
       // Dihedral (deviation between normals) above the limit <=> cos below the limit. Works for
       // either orientation convention only when the faces are consistently oriented.
@@ -471,35 +474,12 @@ std::vector<Vec3> surfaceSamples(const MeshBuffers& m, size_t count, uint64_t se
   for (size_t v = 0; v < m.vertexCount(); ++v)
     if (used[v]) pts.push_back(vertex(m, uint32_t(v)));
   if (!(total > 0) || count == 0) return pts;
-  // the midpoints of the boundary edges and of the creases (a bend above kCreaseMidpointDeg), once
-  // each: where a chord of a curved boundary or crease is farthest from the other surface, which
-  // area samples rarely hit exactly
-  std::vector<std::pair<uint64_t, uint32_t>> edges;  // (vertex pair, face)
-  edges.reserve(3 * m.triangleCount());
-  for (size_t f = 0; f < m.triangleCount(); ++f) {
-    if (!(area[f] > 0)) continue;
-    const uint32_t* t = &m.triangles[3 * f];
-    for (int k = 0; k < 3; ++k) {
-      const uint64_t i = std::min(t[k], t[(k + 1) % 3]), j = std::max(t[k], t[(k + 1) % 3]);
-      edges.push_back({i << 32 | j, uint32_t(f)});
-    }
-  }
-  std::sort(edges.begin(), edges.end());
-  const double creaseCos = dmath::cos(kCreaseMidpointDeg / kDeg);
-  for (size_t i = 0; i < edges.size();) {
-    size_t j = i + 1;
-    while (j < edges.size() && edges[j].first == edges[i].first) ++j;
-    bool sample = j - i != 2;  // a boundary (or non-manifold) edge
-    if (!sample) {
-      const Vec3 n0 = faceNormal(m, edges[i].second), n1 = faceNormal(m, edges[i + 1].second);
-      sample = dot(n0, n1) < creaseCos * norm(n0) * norm(n1);
-    }
-    if (sample) {
-      const uint64_t e = edges[i].first;
-      const Vec3 p = vertex(m, uint32_t(e >> 32)), q = vertex(m, uint32_t(e & 0xffffffffu));
-      pts.push_back({0.5 * (p[0] + q[0]), 0.5 * (p[1] + q[1]), 0.5 * (p[2] + q[2])});
-    }
-    i = j;
+  // the midpoints of the boundary edges and of the creases (a bend above kCreaseMidpointDeg):
+  // where a chord of a curved boundary or crease is farthest from the other surface, which area
+  // samples rarely hit exactly
+  for (const auto& [a, b] : featureEdges(m, kCreaseMidpointDeg, true)) {
+    const Vec3 p = vertex(m, a), q = vertex(m, b);
+    pts.push_back({0.5 * (p[0] + q[0]), 0.5 * (p[1] + q[1]), 0.5 * (p[2] + q[2])});
   }
   pts.reserve(pts.size() + count + m.triangleCount());
   Rng rng{seed};

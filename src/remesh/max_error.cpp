@@ -4,7 +4,7 @@
 #include <cmath>
 #include <string>
 
-#include "core/detmath.h"
+#include "quality/metrics.h"
 
 namespace conformesh {
 namespace {
@@ -27,12 +27,8 @@ constexpr double kCloseEnoughFraction = 0.6;
 // (a flat surface: about 0) would otherwise ask for an unbounded tolerance, attempt after attempt.
 constexpr double kMaxToleranceStep = 8.0;
 
-double inputDiagonal(const MeshBuffers& m) {
-  double lo[3] = {INFINITY, INFINITY, INFINITY}, hi[3] = {-INFINITY, -INFINITY, -INFINITY};
-  for (size_t v = 0; v < m.vertexCount(); ++v)
-    for (int k = 0; k < 3; ++k) lo[k] = std::min(lo[k], m.positions[3 * v + k]), hi[k] = std::max(hi[k], m.positions[3 * v + k]);
-  return m.vertexCount() == 0 ? 0.0 : dmath::hypot(hi[0] - lo[0], hi[1] - lo[1], hi[2] - lo[2]);
-}
+// the diagonal the report's hausdorffRel is relative to
+double inputDiagonal(const MeshBuffers& m) { return quality::boundingBox(m).diagonal(); }
 
 }  // namespace
 

@@ -7,6 +7,7 @@
 
 #include "core/detmath.h"
 #include "remesh/limits.h"
+#include "remesh/max_error.h"
 
 namespace conformesh::pipeline {
 namespace {
@@ -71,8 +72,7 @@ Surface prepareSurface(ValidatedMesh vm, const MeshBuffers& input, const RemeshO
   fo.junctionScale = target;
   // error-driven, every sharp edge is kept unless asked otherwise: the output spanning a dropped
   // crease deviates from it by the crease's own height, whatever the sizes
-  const bool errorDriven = opt.maxError > 0 || opt.maxErrorRel > 0;
-  fo.minFeatureLength = opt.minFeatureLength >= 0 ? opt.minFeatureLength : errorDriven ? 0.0 : kMinFeatureFactor * target;
+  fo.minFeatureLength = opt.minFeatureLength >= 0 ? opt.minFeatureLength : errorDriven(opt) ? 0.0 : kMinFeatureFactor * target;
   // strips narrower than half the smallest edge the sizing allows (its minLength) are merged
   // into a neighbour (features/segmentation.h)
   fo.minPatchWidth = opt.minPatchWidth >= 0 ? opt.minPatchWidth : 0.5 * (opt.minEdgeLength > 0 ? opt.minEdgeLength : 0.1 * target);
@@ -130,7 +130,7 @@ Surface prepareSurface(ValidatedMesh vm, const MeshBuffers& input, const RemeshO
   so.gradation = opt.gradation;
   so.minEdgeLength = opt.minEdgeLength;
   so.maxEdgeLength = opt.maxEdgeLength;
-  if (errorDriven) {
+  if (errorDriven(opt)) {
     // error-driven (remesh/max_error.h): the chord tolerance and the curvature set the sizes, up
     // to a tenth of the diagonal where the surface is flat; the target keeps the smallest edge
     so.targetEdgeLength = kErrorDrivenMaxSizeRel * diagonal;
