@@ -43,6 +43,44 @@ std::vector<uint32_t> pairContinuations(const EdgeGraph& g, const std::vector<ui
   return partner;
 }
 
+// The chains: candidates joined where one continues another (pairContinuations).
+UnionFind chainsOf(const EdgeGraph& g, const std::vector<uint32_t>& partner) {
+  UnionFind chain(g.edgeCount());
+  for (uint32_t e = 0; e < g.edgeCount(); ++e)
+    for (int k = 0; k < 2; ++k)
+      if (partner[2 * e + k] != kNone) chain.unite(e, partner[2 * e + k]);
+  return chain;
+}
+
+// A chain of many edges continuing each other straight over many output edges.
+bool isLine(double length, uint32_t edges, const CreaseOptions& o) {
+  return length >= o.lineLengthFactor * o.minLength && edges >= o.lineEdges;
+}
+
+// The outlier faces' candidate pairs (creases.h) made no candidates: those meeting below
+// tipLimit whose faces across bend by at most limit, neither edge in keep. Decided from the
+// candidates as given, so the result does not depend on the face order.
+void dropOutlierFaces(const EdgeGraph& g, double limit, double tipLimit, const std::vector<uint8_t>& keep, Creases& out) {
+  std::vector<uint32_t> drop;
+  for (uint32_t f = 0; f < g.faceCount; ++f) {
+    const auto& fe = g.faceEdges[f];
+    for (int i = 0; i < 3; ++i)
+      for (int j = i + 1; j < 3; ++j) {
+        if (!out.edge[fe[i]] || !out.edge[fe[j]] || keep[fe[i]] || keep[fe[j]]) continue;
+        if (g.cornerAngle(f, (3 - i - j + 2) % 3) >= tipLimit) continue;  // the corner opposite the third edge
+        const uint32_t gi = g.edgeFaces[fe[i]][0] == f ? g.edgeFaces[fe[i]][1] : g.edgeFaces[fe[i]][0];
+        const uint32_t gj = g.edgeFaces[fe[j]][0] == f ? g.edgeFaces[fe[j]][1] : g.edgeFaces[fe[j]][0];
+        if (gi == kNone || gj == kNone || gi == gj) continue;
+        const Vec3 ni = g.faceNormal(gi), nj = g.faceNormal(gj);
+        if (norm(ni) == 0 || norm(nj) == 0 || angleBetween(ni, nj) > limit) continue;
+        drop.push_back(fe[i]);
+        drop.push_back(fe[j]);
+      }
+  }
+  for (uint32_t e : drop)
+    out.edge[e] = 0;
+}
+
 }  // namespace
 
 Creases detectCreases(const EdgeGraph& g, const CreaseOptions& o) {
@@ -51,8 +89,9 @@ Creases detectCreases(const EdgeGraph& g, const CreaseOptions& o) {
   if (!(o.minLength >= 0 && o.minLength < INFINITY))
     fail(Code::InvalidArgument, Stage::Segment, "minFeatureLength must be finite and >= 0");
   if (!(o.continuationDeg >= 0 && o.continuationDeg <= 180) || !(o.contrast >= 1) || !(o.strongContrast >= o.contrast) ||
-      !(o.lineLengthFactor >= 1))
-    fail(Code::InvalidArgument, Stage::Segment, "crease continuation in [0, 180], 1 <= contrast <= strongContrast, lineLengthFactor >= 1");
+      !(o.lineLengthFactor >= 1) || !(o.outlierTipDeg >= 0 && o.outlierTipDeg <= 180))
+    fail(Code::InvalidArgument, Stage::Segment,
+         "crease continuation and outlier tip in [0, 180], 1 <= contrast <= strongContrast, lineLengthFactor >= 1");
   const uint32_t ne = g.edgeCount();
   Creases out;
   out.edge.assign(ne, 0);
@@ -67,13 +106,21 @@ Creases detectCreases(const EdgeGraph& g, const CreaseOptions& o) {
   }
   out.creaseEdges = out.candidates;
   if (o.minLength <= 0 || out.candidates == 0) return out;
+  {  // outlier faces, but not on a line
+    UnionFind chain = chainsOf(g, pairContinuations(g, out.edge, o.continuationDeg * kPi / 180.0));
+    std::vector<double> length(ne, 0.0);
+    std::vector<uint32_t> edges(ne, 0);
+    for (uint32_t e = 0; e < ne; ++e)
+      if (out.edge[e]) length[chain.find(e)] += g.edgeLength(e), ++edges[chain.find(e)];
+    std::vector<uint8_t> onLine(ne, 0);
+    for (uint32_t e = 0; e < ne; ++e)
+      onLine[e] = out.edge[e] && isLine(length[chain.find(e)], edges[chain.find(e)], o);
+    dropOutlierFaces(g, limit, o.outlierTipDeg * kPi / 180.0, onLine, out);
+  }
   const std::vector<uint8_t> candidate = out.edge;
 
   const std::vector<uint32_t> partner = pairContinuations(g, candidate, o.continuationDeg * kPi / 180.0);
-  UnionFind chain(ne);
-  for (uint32_t e = 0; e < ne; ++e)
-    for (int k = 0; k < 2; ++k)
-      if (partner[2 * e + k] != kNone) chain.unite(e, partner[2 * e + k]);
+  UnionFind chain = chainsOf(g, partner);
 
   // contrast: the dihedral against the median of the other edges at both ends (the edge's own
   // continuations excluded: they are the crease, not its neighbourhood)
@@ -115,7 +162,7 @@ Creases detectCreases(const EdgeGraph& g, const CreaseOptions& o) {
     // a long chain that mostly stands out (three edges at least: one or two edges of a coarse
     // tessellation are no evidence of a line), or one that mostly stands out strongly, or a
     // line: many edges continuing each other straight over many output edges
-    const bool line = s.length >= o.lineLengthFactor * o.minLength && s.edges >= o.lineEdges;
+    const bool line = isLine(s.length, s.edges, o);
     keptChain[e] = s.length >= o.minLength && ((s.mostlyDistinct() && s.edges >= 3) || s.mostlyStrong() || line);
   }
   // bridges: a short chain that mostly stands out and whose every free end touches another

@@ -4,8 +4,14 @@
 // exceeds the feature angle is a candidate. On CAD the candidates are creases: long chains of
 // edges whose neighbourhood is flat or gently curved. On a coarse or noisy tessellation of a
 // smooth surface (scans, organic models) many edges exceed any fixed angle: they are facets, not
-// creases, and each one kept becomes a curve, so patches, exempt junctions and grading. Three
-// tests tell them apart, all at once along a chain (hysteresis: a chain is kept or dropped whole):
+// creases, and each one kept becomes a curve, so patches, exempt junctions and grading. Four
+// tests tell them apart, the first per face, the others at once along a chain (hysteresis: a
+// chain is kept or dropped whole):
+//   * outliers: a face whose two candidate edges meet at a tip sharper than outlierTipDeg while
+//     the faces across them bend by less than the feature angle: the face's three corners lie on
+//     those two neighbours, so its own normal is the artifact (a needle whose normal its
+//     vertices' noise swings, or a face folded over), and the two edges are no candidates,
+//     unless one of them is on a line (below): a CAD face between two of its lines is real;
 //   * contrast: an edge's dihedral against the median dihedral of the edges around its two ends
 //     (its own chain excluded): a crease stands out of a smooth neighbourhood, a facet of a
 //     coarse surface does not;
@@ -43,6 +49,9 @@ struct CreaseOptions {
   //! whatever its contrast (a CAD crease across a curved region whose other edges bend too).
   double lineLengthFactor = 4.0;
   uint32_t lineEdges = 5;
+  //! Outlier faces (below) are looked for where their two candidates meet below this (degrees):
+  //! the angle bound of the output, under which the wedge would be an exempt corner.
+  double outlierTipDeg = 30.0;
 };
 
 struct Creases {

@@ -46,6 +46,7 @@ Surface prepareSurface(ValidatedMesh vm, const MeshBuffers& input, const RemeshO
   F::FeatureOptions fo;
   fo.featureAngleDeg = opt.featureAngleDeg;
   fo.cornerTurnDeg = opt.cornerTurnDeg;
+  fo.angleBoundDeg = opt.minAngleDeg;
   std::vector<std::array<uint32_t, 2>> userFeatures;
   for (const auto& e : opt.featureEdges) {
     if (e[0] >= surf.vm.inputToVertex.size() || e[1] >= surf.vm.inputToVertex.size())

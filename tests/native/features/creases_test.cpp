@@ -74,6 +74,32 @@ TEST_CASE("creases: a fold across a mildly rough sheet is kept whole, the roughn
   CHECK(c.keptChains == 1);
 }
 
+TEST_CASE("creases: a needle face tilted out of a flat sheet makes no crease; without the outlier test it does") {
+  // triangle (a, b, c) of a flat grid split at p, just off the middle of ab and lifted: the
+  // needle (a, b, p) tilts by about 79°, the faces around it by less than 10°
+  MeshBuffers m = testshapes::square(8);
+  const size_t t = 3 * 70;  // a triangle inside the grid
+  const uint32_t a = m.triangles[t], b = m.triangles[t + 1], c = m.triangles[t + 2];
+  double p[3];
+  for (int k = 0; k < 3; ++k) {
+    const double mid = 0.5 * (m.positions[3 * a + k] + m.positions[3 * b + k]);
+    p[k] = mid + 0.02 * (m.positions[3 * c + k] - mid);
+  }
+  p[2] += 0.01;
+  const uint32_t pi = uint32_t(m.vertexCount());
+  m.positions.insert(m.positions.end(), p, p + 3);
+  m.triangles[t + 2] = pi;
+  m.triangles.insert(m.triangles.end(), {b, c, pi, c, a, pi});
+  const EdgeGraph g = buildEdgeGraph(m);
+  CreaseOptions o;
+  o.minLength = 0.05;
+  const Creases c0 = detectCreases(g, o);
+  REQUIRE(c0.candidates >= 3);  // the needle's three edges
+  CHECK(c0.creaseEdges == 0);
+  o.outlierTipDeg = 0;
+  CHECK(detectCreases(g, o).creaseEdges >= 2);
+}
+
 TEST_CASE("creases: options out of range are InvalidArgument") {
   EdgeGraph g = buildEdgeGraph(testshapes::cube(2));
   CreaseOptions o;
@@ -84,6 +110,9 @@ TEST_CASE("creases: options out of range are InvalidArgument") {
   CHECK_THROWS_AS(detectCreases(g, o), Error);
   o = CreaseOptions{};
   o.minLength = -1;
+  CHECK_THROWS_AS(detectCreases(g, o), Error);
+  o = CreaseOptions{};
+  o.outlierTipDeg = -1;
   CHECK_THROWS_AS(detectCreases(g, o), Error);
 }
 

@@ -552,6 +552,7 @@ TEST_CASE("features: improveCutJunctions with a region reroutes only the cuts be
 }
 
 TEST_CASE("features: mergeCloseJunctions moves cut junctions off short curves; features stay, patches stay disks (camelhead, man)") {
+  int modelsWithShortCurves = 0;
   for (const char* name : {"camelhead.off", "man.off"}) {
     std::ifstream in(std::string(CONFORMESH_DATA_DIR) + "/" + name, std::ios::binary);
     REQUIRE(in);
@@ -576,8 +577,11 @@ TEST_CASE("features: mergeCloseJunctions moves cut junctions off short curves; f
     const uint32_t merged = mergeCloseJunctions(g, after, minLength);
     INFO(std::string(name) << ": " << merged << " merged; short curves at cut junctions " << shortAtCutJunction(before) << " -> "
               << shortAtCutJunction(after));
-    CHECK(merged > 0);
-    CHECK(shortAtCutJunction(after) < shortAtCutJunction(before));
+    if (shortAtCutJunction(before) > 0) {
+      ++modelsWithShortCurves;
+      CHECK(merged > 0);
+      CHECK(shortAtCutJunction(after) < shortAtCutJunction(before));
+    }
     checkPatchesAreDisks(g, after);
     CHECK(after.patches.size() == before.patches.size());
     uint32_t featuresChanged = 0;  // only cuts move: features and boundaries stay as they are
@@ -587,4 +591,5 @@ TEST_CASE("features: mergeCloseJunctions moves cut junctions off short curves; f
                          after.edgeKind[e] != before.edgeKind[e];
     CHECK(featuresChanged == 0);
   }
+  CHECK(modelsWithShortCurves > 0);  // the test sees a merge at all
 }
