@@ -480,6 +480,37 @@ TEST_CASE("features: straightenCutEars moves a cut across a wedge whose rim is a
   checkPatchesAreDisks(g, s);
 }
 
+TEST_CASE("features: straightenCutEars with keepPatches joins no two large patches, without it the same move does") {
+  // the configuration of the test above on a finer grid (x spacing 0.125, y 0.0625): the cut
+  // from the left side to (1, 0.5), round the face (1, 0.5), (1.125, 0.5), (1, 0.4375), and down
+  // to the bottom side. Moving the cut across the face's 26.6° wedge prunes both tails, joining
+  // the two regions they separate, each of more than kEarFaces faces.
+  MeshBuffers m = testshapes::square(16);
+  for (size_t v = 0; v < m.vertexCount(); ++v) m.positions[3 * v] *= 2;
+  EdgeGraph g = buildEdgeGraph(m);
+  auto at = [&](double x, double y) { return vertexAt(g, x, y); };
+  Segmentation s = segment(g, FeatureOptions{});
+  auto cut = [&](double x0, double y0, double x1, double y1) {
+    const uint32_t e = g.findEdge(at(x0, y0), at(x1, y1));
+    REQUIRE(e != kNone);
+    s.edgeKind[e] = EdgeKind::Cut;
+  };
+  for (int i = 0; i < 8; ++i) cut(0.125 * i, 0.5, 0.125 * (i + 1), 0.5);
+  cut(1, 0.5, 1.125, 0.5);
+  cut(1.125, 0.5, 1, 0.4375);
+  cut(1, 0.4375, 1, 0.5);
+  for (int j = 0; j < 7; ++j) cut(1, 0.0625 * j, 1, 0.0625 * (j + 1));
+  rebuildCurves(g, s);
+  REQUIRE(s.patches.size() == 3);
+  REQUIRE(patchesLargerThan(s, kEarFaces) == 2);
+  Segmentation kept = s;
+  CHECK(straightenCutEars(g, kept, {}, true) == 0);
+  CHECK(kept.patches.size() == 3);
+  CHECK(straightenCutEars(g, s) == 1);
+  CHECK(s.patches.size() == 1);
+  checkPatchesAreDisks(g, s);
+}
+
 namespace {
 // Vertices where exactly two curve edges meet, both cuts, at less than 45 degrees in 3D: a cut
 // turning back on itself (a hairpin; no mesh gives the patch on its inner side good angles).
