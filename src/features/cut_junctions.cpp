@@ -289,15 +289,17 @@ uint32_t improveCutJunctions(const EdgeGraph& g, Segmentation& seg, double scale
   return total;
 }
 
-size_t patchesLargerThan(const Segmentation& seg, size_t faces) {
-  size_t n = 0;
-  for (const auto& p : seg.patches) n += p.size() > faces;
-  return n;
+size_t patchesOver(const Segmentation& seg, const std::vector<uint32_t>& faces) {
+  std::vector<uint32_t> ids;
+  for (uint32_t f : faces) ids.push_back(seg.facePatch[f]);
+  std::sort(ids.begin(), ids.end());
+  return size_t(std::unique(ids.begin(), ids.end()) - ids.begin());
 }
 
-uint32_t straightenCutEars(const EdgeGraph& g, Segmentation& seg, const std::vector<uint32_t>& region, bool keepPatches) {
+uint32_t straightenCutEars(const EdgeGraph& g, Segmentation& seg, const std::vector<uint32_t>& region, bool keepSplit) {
   const double kEar = kNarrowCutWedge;  // wedges below this are candidates
   const double kGain = 1.0 * kPi / 180.0;  // a move must raise the smallest wedge by this much
+  constexpr size_t kMaxFan = 64;  // faces in one wedge (needle fans)
   constexpr int kPasses = 8;
   constexpr size_t kMaxPrune = 4096;  // edges one move may change, pruned branches included
   const std::vector<EdgeKind> original = seg.edgeKind;
@@ -352,7 +354,7 @@ uint32_t straightenCutEars(const EdgeGraph& g, Segmentation& seg, const std::vec
           double angle = g.cornerAngle(f0, c0);
           rim.assign({a, b});
           uint32_t eb = g.findEdge(v, b);
-          while (eb != kNone && !seg.isCurveEdge(eb) && angle < kEar && rim.size() <= kEarFaces) {
+          while (eb != kNone && !seg.isCurveEdge(eb) && angle < kEar && rim.size() <= kMaxFan) {
             const uint32_t nf = g.edgeFaces[eb][0] == f ? g.edgeFaces[eb][1] : g.edgeFaces[eb][0];
             if (nf == kNone) break;
             int cv = 0;
@@ -418,9 +420,8 @@ uint32_t straightenCutEars(const EdgeGraph& g, Segmentation& seg, const std::vec
           // (checked at once, so that one such move cannot undo all the others at the end)
           const bool regroups = oldCutOnRim || toggled.size() > size_t(1 + int(cutB)) + rimEdges.size();
           if (ok && regroups) {
-            const size_t large = keepPatches ? patchesLargerThan(seg, kEarFaces) : 0;
             rebuildCurves(g, seg);
-            ok = touchedPatchesAreDisks(toggled) && (!keepPatches || patchesLargerThan(seg, kEarFaces) >= large);
+            ok = touchedPatchesAreDisks(toggled) && (!keepSplit || patchesOver(seg, region) >= 2);
             if (!ok) {
               undo();
               rebuildCurves(g, seg);

@@ -2,19 +2,13 @@
 // small angle, the patch beside it would have a corner no mesh can fix; these move the cut.
 #pragma once
 
+#include <cstddef>
 #include <cstdint>
 #include <vector>
 
 #include "features/segmentation.h"
 
 namespace conformesh::features {
-
-//! The most faces one wedge of straightenCutEars may span (a needle fan), and so the largest
-//! patch it may absorb whole.
-constexpr size_t kEarFaces = 64;
-
-//! The number of patches of more than `faces` faces.
-size_t patchesLargerThan(const Segmentation& seg, size_t faces);
 
 //! Cuts are ours, so where one meets another curve at a small angle (a Voronoi border arriving
 //! obliquely, three borders meeting at a point), the patch on the narrow side would have a small
@@ -34,10 +28,13 @@ uint32_t improveCutJunctions(const EdgeGraph& g, Segmentation& seg, double scale
 //! zigzag: the patch there has a corner no mesh can give better angles, and the 3D certificate
 //! cannot refine it away. Returns the number of moves. `region` (input faces; empty: all): only
 //! wedges in it are tried (splitPatch passes the split patch, whose new cuts lie in it, so a
-//! split costs the patch's size, not the mesh's). keepPatches: a move that would join two
-//! patches of more than kEarFaces faces (a pruned branch that separated them) is not made
-//! (splitPatch: the parts are what the split is for); a sliver patch inside a wedge may go.
+//! split costs the patch's size, not the mesh's). keepSplit: a move that would leave the faces of
+//! `region` in one patch (a pruned branch that separated its parts) is not made (splitPatch: the
+//! parts are what the split is for); a sliver patch inside a wedge may go.
 uint32_t straightenCutEars(const EdgeGraph& g, Segmentation& seg, const std::vector<uint32_t>& region = {},
-                           bool keepPatches = false);
+                           bool keepSplit = false);
+
+//! The number of patches the faces `faces` lie in.
+size_t patchesOver(const Segmentation& seg, const std::vector<uint32_t>& faces);
 
 }  // namespace conformesh::features

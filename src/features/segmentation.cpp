@@ -517,14 +517,13 @@ bool splitPatch(const EdgeGraph& g, Segmentation& seg, uint32_t p, uint32_t part
   rebuildCurves(g, seg);
   improveCutJunctions(g, seg, seg.junctionScale, region);
   mergeCloseJunctions(g, seg, kCloseJunctionFactor * seg.junctionScale, region);
-  // Straightening the new cuts must not prune a branch that separates two of the parts: the
-  // split would be undone (and redone at the next flattening, without end). Such moves are not
-  // made (a sliver part inside a wedge may go); a straightening that joins parts all the same
-  // is dropped.
+  // Straightening the new cuts must not leave the split patch whole again (a pruned branch that
+  // separated its parts): the split would be undone, and redone at the next flattening, without
+  // end. Such moves are not made (a sliver part inside a wedge may go); a straightening that
+  // leaves one patch all the same is dropped.
   const std::vector<EdgeKind> split = seg.edgeKind;
   const uint32_t cutEdges = seg.cutEdgeCount;
-  const size_t large = patchesLargerThan(seg, kEarFaces);
-  if (straightenCutEars(g, seg, region, true) > 0 && patchesLargerThan(seg, kEarFaces) < large) {
+  if (straightenCutEars(g, seg, region, true) > 0 && patchesOver(seg, region) < 2) {
     seg.edgeKind = split;
     seg.cutEdgeCount = cutEdges;
     rebuildCurves(g, seg);

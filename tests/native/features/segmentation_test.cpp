@@ -480,11 +480,11 @@ TEST_CASE("features: straightenCutEars moves a cut across a wedge whose rim is a
   checkPatchesAreDisks(g, s);
 }
 
-TEST_CASE("features: straightenCutEars with keepPatches joins no two large patches, without it the same move does") {
+TEST_CASE("features: straightenCutEars with keepSplit leaves a region in two patches at least, without it the same move joins them") {
   // the configuration of the test above on a finer grid (x spacing 0.125, y 0.0625): the cut
   // from the left side to (1, 0.5), round the face (1, 0.5), (1.125, 0.5), (1, 0.4375), and down
   // to the bottom side. Moving the cut across the face's 26.6° wedge prunes both tails, joining
-  // the two regions they separate, each of more than kEarFaces faces.
+  // the two regions they separate and the face into one patch.
   MeshBuffers m = testshapes::square(16);
   for (size_t v = 0; v < m.vertexCount(); ++v) m.positions[3 * v] *= 2;
   EdgeGraph g = buildEdgeGraph(m);
@@ -502,9 +502,10 @@ TEST_CASE("features: straightenCutEars with keepPatches joins no two large patch
   for (int j = 0; j < 7; ++j) cut(1, 0.0625 * j, 1, 0.0625 * (j + 1));
   rebuildCurves(g, s);
   REQUIRE(s.patches.size() == 3);
-  REQUIRE(patchesLargerThan(s, kEarFaces) == 2);
+  std::vector<uint32_t> all(g.faceCount);
+  for (uint32_t f = 0; f < g.faceCount; ++f) all[f] = f;
   Segmentation kept = s;
-  CHECK(straightenCutEars(g, kept, {}, true) == 0);
+  CHECK(straightenCutEars(g, kept, all, true) == 0);
   CHECK(kept.patches.size() == 3);
   CHECK(straightenCutEars(g, s) == 1);
   CHECK(s.patches.size() == 1);
