@@ -299,12 +299,19 @@ describe('demo page in headless Chromium', () => {
 
   if (HAS_REMESH) {
     it('cancels a running remesh from the Cancel button', async () => {
+      // a remesh that lasts seconds (fandisk at the page's 2 % can end before the click lands)
+      const edge = page.locator('.lil-controller', { hasText: 'edge length' }).locator('input').first();
+      const defaultEdge = await edge.inputValue();
+      await edge.fill('0.002');
+      await edge.press('Enter');
       await page.click('[data-testid=remesh]');
       await page.waitForFunction(() => document.body.dataset.state === 'remeshing', undefined, { timeout: 10_000 });
       await page.click('[data-testid=cancel]');
-      expect(await waitState(['loaded', 'error', 'remeshed'], 10_000)).toBe('loaded');
+      expect(await waitState(['loaded', 'error', 'remeshed'], 20_000)).toBe('loaded');
       expect(await page.textContent('[data-testid=notice]')).toMatch(/cancelled/i);
       expect(await errorsShown()).toEqual([]);
+      await edge.fill(defaultEdge);
+      await edge.press('Enter');
     });
 
     it('remeshes fandisk in the worker: the table reports the exported mesh, all three views drawn, no error shown', async () => {
