@@ -505,9 +505,21 @@ HausdorffResult hausdorffDistance(const MeshBuffers& a, const MeshBuffers& b, co
   HausdorffResult r;
   r.diagonal = boundingBox(b).diagonal();
   std::vector<Vec3> sa, sb;
-  parallelFor(2, options.threads, [&](size_t side) {
-    if (side == 0) sa = surfaceSamples(a, options.samplesPerSide, options.seed);
-    else sb = surfaceSamples(b, options.samplesPerSide, options.seed + 1);
+  std::unique_ptr<TriangleMeshDistance> toB, toA;
+  // the samples and the trees do not depend on each other: the four side by side, the larger
+  // mesh's tree first (a remesher's output has about ten times its input's triangles)
+  const bool treesToo = !options.computeMean;
+  const bool aFirst = a.triangleCount() >= b.triangleCount();
+  parallelFor(treesToo ? 4 : 2, options.threads, [&](size_t item) {
+    const size_t job = treesToo ? item : item + 2;  // 0, 1: the trees, larger first; 2, 3: the samples
+    if (job == 0 || job == 1) {
+      if ((job == 0) == aFirst) toA = std::make_unique<TriangleMeshDistance>(a, AabbSplit::Morton);
+      else toB = std::make_unique<TriangleMeshDistance>(b, AabbSplit::Morton);
+    } else if (job == 2) {
+      sa = surfaceSamples(a, options.samplesPerSide, options.seed);
+    } else {
+      sb = surfaceSamples(b, options.samplesPerSide, options.seed + 1);
+    }
   });
   r.samplesA = sa.size();
   r.samplesB = sb.size();
@@ -526,11 +538,6 @@ HausdorffResult hausdorffDistance(const MeshBuffers& a, const MeshBuffers& b, co
       for (size_t v = 0; v < a.vertexCount(); ++v)
         if (used[v]) hintsA.push_back((*near)[v] < b.triangleCount() ? int64_t((*near)[v]) : -1);
     }
-    std::unique_ptr<TriangleMeshDistance> toB, toA;
-    parallelFor(2, options.threads, [&](size_t side) {
-      if (side == 0) toB = std::make_unique<TriangleMeshDistance>(b, AabbSplit::Morton);
-      else toA = std::make_unique<TriangleMeshDistance>(a, AabbSplit::Morton);
-    });
     r.aToB = oneSidedMax(sa, *toB, options.threads, hintsA);
     r.bToA = oneSidedMax(sb, *toA, options.threads);
     r.meanAToB = r.meanBToA = -1;

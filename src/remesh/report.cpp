@@ -40,7 +40,15 @@ Status reportOutput(const Surface& surf, const CurveSamples& cs, const MeshBuffe
                     ExemptCorners& exempt, const RemeshOptions& opt, RemeshReport& rep) {
   const MeshBuffers& in = surf.input();
   std::vector<double> triMinRad;  // per triangle, NaN when degenerate
-  auto as = quality::angleStats(out, &triMinRad);
+  quality::AngleStats as;
+  quality::EdgeTopology et;
+  quality::TopologySummary ti;
+  // passes that do not depend on each other, side by side
+  parallelFor(3, unsigned(opt.threads), [&](size_t pass) {
+    if (pass == 0) as = quality::angleStats(out, &triMinRad);
+    else if (pass == 1) et = quality::edgeStatsAndTopology(out);
+    else ti = quality::topologySummary(in);
+  });
   rep.triangles = out.triangleCount();
   rep.vertices = out.vertexCount();
   rep.minAngle = as.minAngle;
@@ -81,10 +89,9 @@ Status reportOutput(const Surface& surf, const CurveSamples& cs, const MeshBuffe
     rep.minAngleOutsideExempt = std::min(rep.minAngleOutsideExempt, a);
     if (a < opt.minAngleDeg) ++rep.trianglesBelowBoundOutsideExempt;
   }
-  const quality::EdgeTopology et = quality::edgeStatsAndTopology(out);
   rep.meanEdgeLength = et.edges.meanLength;
   rep.delaunayFraction = et.edges.delaunayFraction;
-  const quality::TopologySummary ti = quality::topologySummary(in), &to = et.topology;
+  const quality::TopologySummary& to = et.topology;
   // a broken mesh is never a success: a defect here is a bug of the stitch or the repair
   const std::string defect = topologyDifference(to, ti);
   rep.topologyPreserved = defect.empty();

@@ -143,7 +143,7 @@ BestRound meshRounds(const Surface& surf, const RemeshOptions& opt, const Progre
     exempt.indexWedges(surf, m.samples);
     // A round never wins by trading bad triangles for collapsed ones, and a stitch defect (the
     // surface is not manifold there) is worse than any angle: a round with fewer always wins.
-    const Verdict verdict = judge(out, triPatch, exempt);
+    const Verdict verdict = judge(out, triPatch, exempt, unsigned(opt.threads));
     const size_t defects = verdict.defects();
     if (defects < bestDoubled ||
         (defects == bestDoubled && (verdict.collapsed < bestCollapsed || (verdict.collapsed == bestCollapsed && verdict.bad < bestBad)))) {
