@@ -3,6 +3,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <memory>
 #include <string>
 #include <unordered_map>
 
@@ -43,11 +44,25 @@ Status reportOutput(const Surface& surf, const CurveSamples& cs, const MeshBuffe
   quality::AngleStats as;
   quality::EdgeTopology et;
   quality::TopologySummary ti;
-  // passes that do not depend on each other, side by side
-  parallelFor(3, unsigned(opt.threads), [&](size_t pass) {
-    if (pass == 0) as = quality::angleStats(out, &triMinRad);
-    else if (pass == 1) et = quality::edgeStatsAndTopology(out);
-    else ti = quality::topologySummary(in);
+  std::unique_ptr<quality::TriangleMeshDistance> dist;  // the input's, for the max vertex distance
+  quality::HausdorffOptions ho;
+  ho.samplesPerSide = opt.hausdorffSamples;
+  ho.nearTriangleOfVertexA = &vertexFace;  // the input face each output vertex was lifted onto: a start
+  ho.threads = unsigned(opt.threads);
+  quality::HausdorffWork hw;
+  // the passes over the output and the input, and what the distances need, do not depend on each
+  // other: side by side, the largest first (Hausdorff job 0: the larger mesh's tree, the output's)
+  enum : int { kEdges = -1, kAngles = -2, kInputTree = -3, kInputTopology = -4 };
+  std::vector<int> jobs = {kEdges, kAngles, kInputTree, kInputTopology};
+  if (opt.computeHausdorff) jobs = {0, kEdges, kAngles, 1, 2, 3, kInputTree, kInputTopology};
+  parallelFor(jobs.size(), unsigned(opt.threads), [&](size_t i) {
+    switch (jobs[i]) {
+      case kEdges: et = quality::edgeStatsAndTopology(out); break;
+      case kAngles: as = quality::angleStats(out, &triMinRad); break;
+      case kInputTree: dist = std::make_unique<quality::TriangleMeshDistance>(in); break;
+      case kInputTopology: ti = quality::topologySummary(in); break;
+      default: quality::hausdorffJob(hw, out, in, ho, size_t(jobs[i]));
+    }
   });
   rep.triangles = out.triangleCount();
   rep.vertices = out.vertexCount();
@@ -133,7 +148,6 @@ Status reportOutput(const Surface& surf, const CurveSamples& cs, const MeshBuffe
   rep.curves = surf.seg.curves.size();
   rep.curveSamples = cs.cm.samples.size();
   {
-    quality::TriangleMeshDistance dist(in);
     // in chunks of a fixed size, each with its own running max: the same searches on any number
     // of threads, and the max of the chunks' maxima is the max over every vertex
     const size_t nv = out.vertexCount();
@@ -147,9 +161,9 @@ Status reportOutput(const Surface& surf, const CurveSamples& cs, const MeshBuffe
         // distance: at most the worst so far, the vertex cannot change the maximum
         if (vertexFace[v] < in.triangleCount()) {
           hint = vertexFace[v];
-          if (dist.faceDistanceSquared(vertexFace[v], p) <= worst) continue;
+          if (dist->faceDistanceSquared(vertexFace[v], p) <= worst) continue;
         }
-        auto hit = dist.closest(p, hint);
+        auto hit = dist->closest(p, hint);
         hint = hit.primitive;
         worst = std::max(worst, hit.distanceSquared);
       }
@@ -159,13 +173,7 @@ Status reportOutput(const Surface& surf, const CurveSamples& cs, const MeshBuffe
     for (double w : chunkWorst) worst = std::max(worst, w);
     rep.maxDistanceToInputRel = std::sqrt(worst) / surf.sizing.diagonal;
   }
-  if (opt.computeHausdorff) {
-    quality::HausdorffOptions ho;
-    ho.samplesPerSide = opt.hausdorffSamples;
-    ho.nearTriangleOfVertexA = &vertexFace;
-    ho.threads = unsigned(opt.threads);  // the input face each output vertex was lifted onto: a start
-    rep.hausdorffRel = quality::hausdorffDistance(out, in, ho).relative;
-  }
+  if (opt.computeHausdorff) rep.hausdorffRel = quality::hausdorffMeasure(hw, out, in, ho).relative;
   return topologyStatus;
 }
 
