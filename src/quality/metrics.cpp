@@ -179,6 +179,9 @@ std::vector<std::pair<uint64_t, uint32_t>> mortonOrder(const std::vector<Vec3>& 
 // Points per chunk of oneSidedMax: each chunk has its own running max and hint, and chunks of a
 // fixed size make the searches the same for every thread count.
 constexpr size_t kChunk = 4096;
+// Points per chunk of oneSidedMax's first (strided) pass: smaller, so that the pass over the
+// 60000 samples of a remesher's input is not one chunk on one thread.
+constexpr size_t kFirstChunk = 512;
 
 //! Max distance from points to a mesh, the same value as oneSidedWithMean's, by early breaking
 //! (Taha & Hanbury 2015, "An efficient algorithm for calculating the exact Hausdorff distance",
@@ -190,10 +193,10 @@ constexpr size_t kChunk = 4096;
 //! Morton curve (each near its predecessor, so the hint is often close enough), and a first pass
 //! over every kStride-th of them (spread over the whole surface) sets a running max near the
 //! final one, so that most of the others break at once (Taha and Hanbury shuffle the points for
-//! this). Both passes run in chunks of kChunk consecutive points on up to `threads` threads, each
-//! chunk from the first pass's max with a running max of its own: the max of the chunks' maxima
-//! is the max over every point, whatever order the chunks run in.
-// `order`: mortonOrder(pts).
+//! this). Both passes run in chunks of consecutive points (kFirstChunk of the first pass's, kChunk)
+//! on up to `threads` threads, each chunk from the first pass's max with a running max of its
+//! own: the max of the chunks' maxima is the max over every point, whatever order the chunks run
+//! in. `order`: mortonOrder(pts).
 double oneSidedMax(const std::vector<Vec3>& pts, const std::vector<std::pair<uint64_t, uint32_t>>& order,
                    const TriangleMeshDistance& target, unsigned threads, const std::vector<int64_t>& pointHints = {}) {
   constexpr size_t kStride = 16;
@@ -215,7 +218,7 @@ double oneSidedMax(const std::vector<Vec3>& pts, const std::vector<std::pair<uin
     }
     return worst;
   };
-  const size_t n = order.size(), span = kChunk * kStride;
+  const size_t n = order.size(), span = kFirstChunk * kStride;
   std::vector<double> firstWorst((n + span - 1) / span, 0.0);
   parallelFor(firstWorst.size(), threads, [&](size_t c) {
     firstWorst[c] = pass(c * span, std::min(n, (c + 1) * span), kStride, true, 0.0);
