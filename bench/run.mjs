@@ -383,6 +383,37 @@ function gmshRemesh(stlFile, target, outFile, featureAngle = 60) {
   return [ 'gmsh', [geo, '-2', '-o', outFile, '-format', 'stl'] ];
 }
 
+// Issue 21: the CLI (cmd, args: a remesh without -o or with it) on 1 and 2 threads, the report's
+// Hausdorff distance included, in `pairs` interleaved pairs whose order alternates (the host's
+// speed drifts within a minute: separate batches would put that into the ratio). The ratio is the
+// median of the pairs' ratios of in-process seconds.total; `identical`: every pair wrote the same
+// bytes (the output does not depend on the thread count).
+function threadPairs(cmd, args, pairs) {
+  const base = args.filter((a) => a !== '--no-hausdorff');
+  const out = base.indexOf('-o');
+  const res = { target: 0.62, pairs: [] };
+  for (let i = 0; i < pairs && !res.error; ++i) {
+    const got = {};
+    for (const t of i % 2 ? [2, 1] : [1, 2]) {
+      const a = [...base, '--threads', String(t)];
+      const file = out >= 0 ? path.join(WORK, `threads-${t}.obj`) : null;
+      if (file) a[out + 1] = file;
+      const r = run(cmd, a, { timeout: 300 });
+      if (!r.ok) { res.error = r.error; break; }
+      got[t] = { seconds: Number(r.json?.seconds?.total), bytes: file ? readFileSync(file) : null };
+    }
+    if (res.error) break;
+    res.pairs.push({ one: got[1].seconds, two: got[2].seconds, same: got[1].bytes && got[2].bytes ? got[1].bytes.equals(got[2].bytes) : null });
+  }
+  if (res.pairs.length) {
+    res.oneSeconds = median(res.pairs.map((p) => p.one));
+    res.twoSeconds = median(res.pairs.map((p) => p.two));
+    res.ratio = median(res.pairs.map((p) => p.two / p.one));
+    res.identical = res.pairs.every((p) => p.same !== false);
+  }
+  return res;
+}
+
 function sectionRemesh() {
   const sec = { description: 'End-to-end surface remeshing of every model in ../shared/data at a target edge length relative to the bounding-box diagonal (1% for all, and fandisk at 0.4%: the headline). Peers: CGAL isotropic_remeshing (sharp edges ≥ 60° constrained, 3 iterations), gmsh 4.8 STL reparametrization (tutorial t13: ClassifySurfaces at 60°, CreateGeometry, Frontal-Delaunay). Quality of every output by our quality_tool against the input.', rows: [] };
   const only = opt('--models', '').split(',').filter(Boolean);
@@ -390,7 +421,7 @@ function sectionRemesh() {
   const cases = [...(models.includes('fandisk.off') ? [['fandisk.off', 0.004, QUICK ? 1 : REPEAT]] : []), ...models.map((m) => [m, 0.01, 1])];
   const cgal = peer('cgal_remesh');
   const haveGmsh = !!sh('command -v gmsh');
-  const rows = [], optimizeRows = [];
+  const rows = [], optimizeRows = [], threadRows = [];
   const stlDir = path.join(WORK, 'stl');
   mkdirSync(stlDir, { recursive: true });
   for (const [model, rel, reps] of cases) {
@@ -454,6 +485,9 @@ function sectionRemesh() {
       } else c.error = pairError;
       row.optimizeCost = c;
       optimizeRows.push([model, rel, c.optimizeSeconds, c.totalSeconds, c.noOptimizeTotalSeconds ?? null, c.ratio ?? null, c.target]);
+      row.threadsCost = threadPairs(o[0], o[1], Math.max(reps, 7));
+      const t = row.threadsCost;
+      threadRows.push([model, rel, t.oneSeconds ?? null, t.twoSeconds ?? null, t.ratio ?? null, t.target, t.identical ?? null, t.error ?? '']);
     }
     sec.rows.push(row);
     const q = (r) => (r.ok && r.quality && !r.quality.error ? r.quality : null);
@@ -467,6 +501,8 @@ function sectionRemesh() {
     }
   }
   table('remesh: end to end (seconds: median; quality by our quality_tool)', ['model', 'edge/diag', 'tool', 'seconds', 'process CPU s', 'triangles', 'min∠', 'mean min∠', '% <30°', 'Hausdorff/diag', 'features kept %', 'topology kept'], rows);
+  if (threadRows.length)
+    table(`remesh: 2 threads against 1 (ours, the report's Hausdorff distance included; in-process seconds.total, medians over interleaved pairs, the order alternating; ratio: the median of the pairs' ratios; target ≤ 0.62 on 2 cores; this machine: ${os.cpus().length} cores, load average ${os.loadavg()[0].toFixed(2)} at the end)`, ['model', 'edge/diag', '1 thread s', '2 threads s', 'ratio', 'target', 'same bytes', 'error'], threadRows);
   if (optimizeRows.length)
     table('remesh: cost of the optimization stage (ours, medians over pairs of runs with and without it; ratio: the median of the pairs\' ratios; target ≤ 0.5)', ['model', 'edge/diag', 'optimize s', 'total s', 'total s with --no-optimize', 'ratio', 'target'], optimizeRows);
   return sec;

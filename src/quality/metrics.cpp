@@ -164,9 +164,24 @@ void oneSidedWithMean(const std::vector<Vec3>& pts, const TriangleMeshDistance& 
   meanD = pts.empty() ? 0 : sum / double(pts.size());
 }
 
+// The points' indices with their Morton codes over the points' bounding box, in Morton order: the
+// order oneSidedMax visits them in (neighbours in a row, the hints stay near).
+std::vector<std::pair<uint64_t, uint32_t>> mortonOrder(const std::vector<Vec3>& pts) {
+  Box3 box;
+  for (const Vec3& p : pts) box.add(p);
+  const MortonGrid grid(box);
+  std::vector<std::pair<uint64_t, uint32_t>> order(pts.size());
+  for (size_t i = 0; i < pts.size(); ++i) order[i] = {grid.code(pts[i]), uint32_t(i)};
+  MortonGrid::sort(order);
+  return order;
+}
+
 // Points per chunk of oneSidedMax: each chunk has its own running max and hint, and chunks of a
 // fixed size make the searches the same for every thread count.
 constexpr size_t kChunk = 4096;
+// Points per chunk of oneSidedMax's first (strided) pass: smaller, so that the pass over the
+// 60000 samples of a remesher's input is not one chunk on one thread.
+constexpr size_t kFirstChunk = 512;
 
 //! Max distance from points to a mesh, the same value as oneSidedWithMean's, by early breaking
 //! (Taha & Hanbury 2015, "An efficient algorithm for calculating the exact Hausdorff distance",
@@ -178,18 +193,13 @@ constexpr size_t kChunk = 4096;
 //! Morton curve (each near its predecessor, so the hint is often close enough), and a first pass
 //! over every kStride-th of them (spread over the whole surface) sets a running max near the
 //! final one, so that most of the others break at once (Taha and Hanbury shuffle the points for
-//! this). Both passes run in chunks of kChunk consecutive points on up to `threads` threads, each
-//! chunk from the first pass's max with a running max of its own: the max of the chunks' maxima
-//! is the max over every point, whatever order the chunks run in.
-double oneSidedMax(const std::vector<Vec3>& pts, const TriangleMeshDistance& target, unsigned threads,
-                   const std::vector<int64_t>& pointHints = {}) {
+//! this). Both passes run in chunks of consecutive points (kFirstChunk of the first pass's, kChunk)
+//! on up to `threads` threads, each chunk from the first pass's max with a running max of its
+//! own: the max of the chunks' maxima is the max over every point, whatever order the chunks run
+//! in. `order`: mortonOrder(pts).
+double oneSidedMax(const std::vector<Vec3>& pts, const std::vector<std::pair<uint64_t, uint32_t>>& order,
+                   const TriangleMeshDistance& target, unsigned threads, const std::vector<int64_t>& pointHints = {}) {
   constexpr size_t kStride = 16;
-  Box3 box;
-  for (const Vec3& p : pts) box.add(p);
-  const MortonGrid grid(box);
-  std::vector<std::pair<uint64_t, uint32_t>> order(pts.size());
-  for (size_t i = 0; i < pts.size(); ++i) order[i] = {grid.code(pts[i]), uint32_t(i)};
-  MortonGrid::sort(order);
   // a point's own hint (a triangle near a vertex, given by the caller) before its predecessor's
   auto hintOf = [&](uint32_t i, int64_t previous) {
     return i < pointHints.size() && pointHints[i] >= 0 ? pointHints[i] : previous;
@@ -208,7 +218,7 @@ double oneSidedMax(const std::vector<Vec3>& pts, const TriangleMeshDistance& tar
     }
     return worst;
   };
-  const size_t n = order.size(), span = kChunk * kStride;
+  const size_t n = order.size(), span = kFirstChunk * kStride;
   std::vector<double> firstWorst((n + span - 1) / span, 0.0);
   parallelFor(firstWorst.size(), threads, [&](size_t c) {
     firstWorst[c] = pass(c * span, std::min(n, (c + 1) * span), kStride, true, 0.0);
@@ -501,14 +511,28 @@ std::vector<Vec3> surfaceSamples(const MeshBuffers& m, size_t count, uint64_t se
   return pts;
 }
 
-HausdorffResult hausdorffDistance(const MeshBuffers& a, const MeshBuffers& b, const HausdorffOptions& options) {
+void hausdorffJob(HausdorffWork& w, const MeshBuffers& a, const MeshBuffers& b, const HausdorffOptions& options,
+                  size_t job) {
+  // the larger mesh's tree first (a remesher's output has about ten times its input's triangles)
+  const bool aFirst = a.triangleCount() >= b.triangleCount();
+  if (job == 0 || job == 1) {
+    if (options.computeMean) return;  // the mean's full searches use median-split trees of their own
+    if ((job == 0) == aFirst) w.toA = std::make_unique<TriangleMeshDistance>(a, AabbSplit::Morton);
+    else w.toB = std::make_unique<TriangleMeshDistance>(b, AabbSplit::Morton);
+  } else if (job == 2) {
+    w.samplesA = surfaceSamples(a, options.samplesPerSide, options.seed);
+    if (!options.computeMean) w.orderA = mortonOrder(w.samplesA);
+  } else if (job == 3) {
+    w.samplesB = surfaceSamples(b, options.samplesPerSide, options.seed + 1);
+    if (!options.computeMean) w.orderB = mortonOrder(w.samplesB);
+  }
+}
+
+HausdorffResult hausdorffMeasure(const HausdorffWork& w, const MeshBuffers& a, const MeshBuffers& b,
+                                 const HausdorffOptions& options) {
   HausdorffResult r;
   r.diagonal = boundingBox(b).diagonal();
-  std::vector<Vec3> sa, sb;
-  parallelFor(2, options.threads, [&](size_t side) {
-    if (side == 0) sa = surfaceSamples(a, options.samplesPerSide, options.seed);
-    else sb = surfaceSamples(b, options.samplesPerSide, options.seed + 1);
-  });
+  const std::vector<Vec3>&sa = w.samplesA, &sb = w.samplesB;
   r.samplesA = sa.size();
   r.samplesB = sb.size();
   if (options.computeMean) {
@@ -526,18 +550,19 @@ HausdorffResult hausdorffDistance(const MeshBuffers& a, const MeshBuffers& b, co
       for (size_t v = 0; v < a.vertexCount(); ++v)
         if (used[v]) hintsA.push_back((*near)[v] < b.triangleCount() ? int64_t((*near)[v]) : -1);
     }
-    std::unique_ptr<TriangleMeshDistance> toB, toA;
-    parallelFor(2, options.threads, [&](size_t side) {
-      if (side == 0) toB = std::make_unique<TriangleMeshDistance>(b, AabbSplit::Morton);
-      else toA = std::make_unique<TriangleMeshDistance>(a, AabbSplit::Morton);
-    });
-    r.aToB = oneSidedMax(sa, *toB, options.threads, hintsA);
-    r.bToA = oneSidedMax(sb, *toA, options.threads);
+    r.aToB = oneSidedMax(sa, w.orderA, *w.toB, options.threads, hintsA);
+    r.bToA = oneSidedMax(sb, w.orderB, *w.toA, options.threads);
     r.meanAToB = r.meanBToA = -1;
   }
   r.hausdorff = std::max(r.aToB, r.bToA);
   r.relative = r.diagonal > 0 ? r.hausdorff / r.diagonal : 0;
   return r;
+}
+
+HausdorffResult hausdorffDistance(const MeshBuffers& a, const MeshBuffers& b, const HausdorffOptions& options) {
+  HausdorffWork w;
+  parallelFor(HausdorffWork::kJobs, options.threads, [&](size_t job) { hausdorffJob(w, a, b, options, job); });
+  return hausdorffMeasure(w, a, b, options);
 }
 
 FeatureResult featurePreservation(const MeshBuffers& output, const MeshBuffers& reference,

@@ -9,6 +9,8 @@
 
 #include <cstddef>
 #include <cstdint>
+#include <memory>
+#include <utility>
 #include <vector>
 
 #include "core/mesh_buffers.h"
@@ -157,6 +159,22 @@ struct HausdorffResult {
 };
 HausdorffResult hausdorffDistance(const MeshBuffers& a, const MeshBuffers& b,
                                   const HausdorffOptions& options = {});
+
+//! hausdorffDistance in two steps, for a caller that runs the preparation beside work of its own:
+//! hausdorffJob(w, a, b, options, job) for every job in [0, kJobs), in any order and on any
+//! threads (each writes its own part of w: 0 and 1 the two trees, the larger mesh's first, 2 and
+//! 3 the two sample sets and the order they are searched in), then hausdorffMeasure: the same
+//! result as hausdorffDistance.
+struct HausdorffWork {
+  static constexpr size_t kJobs = 4;
+  std::vector<Vec3> samplesA, samplesB;
+  std::vector<std::pair<uint64_t, uint32_t>> orderA, orderB;  //!< (Morton code, sample) sorted
+  std::unique_ptr<TriangleMeshDistance> toA, toB;
+};
+void hausdorffJob(HausdorffWork& w, const MeshBuffers& a, const MeshBuffers& b, const HausdorffOptions& options,
+                  size_t job);
+HausdorffResult hausdorffMeasure(const HausdorffWork& w, const MeshBuffers& a, const MeshBuffers& b,
+                                 const HausdorffOptions& options);
 
 //! How well the output keeps the reference's sharp features. Reference feature edges: interior
 //! edges (two faces) with dihedral angle > `featureAngle` degrees. Each is sampled at

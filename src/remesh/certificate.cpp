@@ -4,6 +4,7 @@
 #include <cmath>
 
 #include "core/detmath.h"
+#include "core/parallel_for.h"
 #include "quality/metrics.h"
 #include "remesh/stitch_defects.h"
 
@@ -106,20 +107,27 @@ uint32_t ExemptCorners::cornerOf(const MeshBuffers& out, size_t t) const {
   return kNone;
 }
 
-Verdict judge(const MeshBuffers& out, const std::vector<uint32_t>& triPatch, const ExemptCorners& exempt) {
+Verdict judge(const MeshBuffers& out, const std::vector<uint32_t>& triPatch, const ExemptCorners& exempt,
+              unsigned threads) {
   const double cosCollapsed = dmath::cos(kCollapsedDeg * kPi / 180.0);
-  // bad: below the bound outside exempt corners; collapsed: a corner below kCollapsedDeg (points
-  // closer than the lift resolves, e.g. refinement cascading into a small exempt wedge)
   Verdict v;
-  for (size_t t = 0; t < out.triangleCount(); ++t) {
-    if (minAngleBelow(out, t, kCollapsedDeg, cosCollapsed)) ++v.collapsed;
-    if (exempt.bad(out, t)) ++v.bad;
-  }
-  // the same three samples meshed as a triangle by two patches (a corner wedge between two
-  // curves that both patches border, closed by one triangle on each side), or a chord both
-  // have: the stitched surface is not manifold there
-  v.doubled = doubledTriangles(out, triPatch);
-  v.chords = sharedChords(out, triPatch);
+  parallelFor(3, threads, [&](size_t pass) {
+    if (pass == 0) {
+      // bad: below the bound outside exempt corners; collapsed: a corner below kCollapsedDeg
+      // (points closer than the lift resolves, e.g. refinement cascading into a small exempt wedge)
+      for (size_t t = 0; t < out.triangleCount(); ++t) {
+        if (minAngleBelow(out, t, kCollapsedDeg, cosCollapsed)) ++v.collapsed;
+        if (exempt.bad(out, t)) ++v.bad;
+      }
+    } else if (pass == 1) {
+      // the same three samples meshed as a triangle by two patches (a corner wedge between two
+      // curves that both patches border, closed by one triangle on each side), or a chord both
+      // have: the stitched surface is not manifold there
+      v.doubled = doubledTriangles(out, triPatch);
+    } else {
+      v.chords = sharedChords(out, triPatch);
+    }
+  });
   return v;
 }
 

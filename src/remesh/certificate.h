@@ -59,8 +59,10 @@ struct Verdict {
   size_t defects() const { return doubled.size() + chords.size(); }
 };
 
-//! Judge a stitched round (triPatch: the patch of each triangle).
-Verdict judge(const MeshBuffers& out, const std::vector<uint32_t>& triPatch, const ExemptCorners& exempt);
+//! Judge a stitched round (triPatch: the patch of each triangle); its three passes run side by
+//! side on up to `threads` threads (RemeshOptions::threads), the same verdict for every count.
+Verdict judge(const MeshBuffers& out, const std::vector<uint32_t>& triPatch, const ExemptCorners& exempt,
+              unsigned threads = 1);
 
 //! Ask the patches for what the verdict needs: a required point inside every stitch defect (its
 //! patch then keeps its boundary when keepBoundary), a graded spot at every bad triangle.

@@ -187,9 +187,25 @@ Patches flattenPatches(Surface& surf, const RemeshOptions& opt, const Progress& 
   // Patches are flattened a window ahead of the patch order. A split ends the round, and the
   // flattenings after it are mostly lost (the next round's extraction of a patch differs, if only
   // in its face order): the window bounds that loss, one thread none, while 4 patches per thread
-  // are enough to balance them.
+  // are enough to balance them, unless one is as large as the others together (fandisk's largest
+  // is about half of its flattening): the window then grows until its faces are `threads` times
+  // its largest patch's.
   const unsigned threads = resolveThreads(unsigned(opt.threads));
   const size_t window = threads <= 1 ? 1 : 4 * size_t(threads);
+  const auto windowEnd = [&](const std::vector<uint32_t>& todo, size_t from) {
+    size_t to = std::min(todo.size(), from + window);
+    if (threads <= 1) return to;
+    size_t faces = 0, largest = 0;
+    for (size_t i = from; i < to; ++i) {
+      faces += surf.seg.patches[todo[i]].size();
+      largest = std::max(largest, surf.seg.patches[todo[i]].size());
+    }
+    for (; to < todo.size() && faces < threads * largest; ++to) {
+      faces += surf.seg.patches[todo[to]].size();
+      largest = std::max(largest, surf.seg.patches[todo[to]].size());
+    }
+    return to;
+  };
   double reported = 0;  // progress stays monotone across the parallel and the ordered part
   const auto advance = [&](double f) {
     reported = std::max(reported, f);
@@ -218,9 +234,9 @@ Patches flattenPatches(Surface& surf, const RemeshOptions& opt, const Progress& 
     spare.clear();
     const double total = double(surf.seg.patches.size() + 1);
     bool split = false;
-    for (size_t from = 0; from < todo.size() && !split; from += window) {
+    for (size_t from = 0, to = 0; from < todo.size() && !split; from = to) {
       // the next window of them flattened apart, on the threads (largest first) ...
-      const size_t to = std::min(todo.size(), from + window);
+      to = windowEnd(todo, from);
       std::vector<double> cost(to - from);
       for (size_t i = from; i < to; ++i) cost[i - from] = made[i].w ? 0.0 : double(surf.seg.patches[todo[i]].size());
       const std::vector<size_t> byCost = largestFirst(cost);

@@ -247,39 +247,13 @@ void cornerChains(const Surface& surf, const Meshing& m, const PatchWork& w, con
   }
 }
 
-}  // namespace
-
-void meshPatch(const Surface& surf, const RemeshOptions& opt, Meshing& m, uint32_t p, StageClock& clock, bool splitSegments) {
-  PatchWork& w = *m.patches[p];
-  w.builtAt = ++m.samples.stamp;
-  w.dirty = false;
-  w.needsMesh = false;
-  w.optimized = false;
-  std::vector<BoundaryPoint> bp = boundaryPoints(surf, m.samples, w);
-  // A small patch bounded by short curves can have fewer than 3 boundary samples, or only
-  // collinear ones (two curves between the same two corners): add a sample in the middle of the
-  // longest boundary stretch (shared with the neighbour like any segment split) until it has a
-  // proper polygon.
-  for (int guard = 0; guard < 8 && degenerateBoundary(bp); ++guard) {
-    size_t longest = 0;
-    double best = -1;
-    for (size_t i = 0; i < bp.size(); ++i) {
-      // its length along the flattened boundary
-      double len = 0;
-      const auto& loop = w.pm.boundaryLoops[0];
-      for (const Piece& pc : stretch(w, bp[i], bp[(i + 1) % bp.size()], bp.size())) {
-        const auto& h = loop[pc.k];
-        uint32_t va = w.pm.mesh.triangles[3 * h.face + h.corner], vb = w.pm.mesh.triangles[3 * h.face + (h.corner + 1) % 3];
-        len += (pc.t1 - pc.t0) * dmath::hypot(w.flat.uv[2 * vb] - w.flat.uv[2 * va], w.flat.uv[2 * vb + 1] - w.flat.uv[2 * va + 1]);
-      }
-      if (len > best) best = len, longest = i;
-    }
-    addSplitSample(surf, m.samples, m.patches, w, bp, uint32_t(longest), 0.5);
-    w.builtAt = ++m.samples.stamp;
-    w.dirty = false;
-    bp = boundaryPoints(surf, m.samples, w);
-  }
-  if (degenerateBoundary(bp)) fail(Code::InternalError, Stage::Refine, "patch " + std::to_string(p) + ": its boundary samples do not make a polygon");
+// Refine patch p from its boundary points bp and lift the new vertices, writing nothing but
+// `out` (see refineApart). False, with the refinement's error in `crossing`, when the chords
+// between bp cross (the refinement rejects the polygon: InvalidPslg); other errors are thrown.
+bool refineAndLift(const Surface& surf, const RemeshOptions& opt, const Meshing& m, uint32_t p, bool splitSegments,
+                   const std::vector<BoundaryPoint>& bp, PatchMeshing& out, Status& crossing) {
+  const Clock::time_point start = Clock::now();
+  const PatchWork& w = *m.patches[p];
   planar::Pslg pslg = boundaryPslg(bp);
   pslg.points.insert(pslg.points.end(), w.requiredPoints.begin(), w.requiredPoints.end());
   planar::RefineOptions ro;
@@ -325,50 +299,33 @@ void meshPatch(const Surface& surf, const RemeshOptions& opt, Meshing& m, uint32
   double area3 = 0;
   for (uint32_t f : w.pm.faceInput) area3 += surf.g.faceArea(f);
   ro.maxInsertions = size_t(std::min(4e7, 50.0 * area3 / (surf.sizing.minLength * surf.sizing.minLength) + 1e5));
+  cornerChains(surf, m, w, bp, pslg.points.size() / 2, ro.apexOf, ro.chainOf);
   planar::RefineResult rr;
-  for (int attempt = 0;; ++attempt) {
-    cornerChains(surf, m, w, bp, pslg.points.size() / 2, ro.apexOf, ro.chainOf);
-    try {
-      rr = planar::refinePslg(pslg, ro);
-      break;
-    } catch (const Error& e) {
-      if (e.code() != Code::InvalidPslg || attempt >= kCrossingRepairs) throw;
-    }
-    // The chords between boundary samples cross where the boundary doubles back within a sample
-    // spacing: split the crossing chords (shared with the neighbours like any segment split)
-    // and try again.
-    const std::vector<uint32_t> crossing = crossingSegments(pslg);
-    if (crossing.empty()) fail(Code::InternalError, Stage::Refine, "patch " + std::to_string(p) + ": invalid boundary, but no chords cross");
-    for (uint32_t sg : crossing) addSplitSample(surf, m.samples, m.patches, w, bp, sg, 0.5);
-    w.builtAt = ++m.samples.stamp;
-    w.dirty = false;
-    bp = boundaryPoints(surf, m.samples, w);
-    pslg = boundaryPslg(bp);
-    pslg.points.insert(pslg.points.end(), w.requiredPoints.begin(), w.requiredPoints.end());
+  try {
+    rr = planar::refinePslg(pslg, ro);
+  } catch (const Error& e) {
+    if (e.code() != Code::InvalidPslg) throw;
+    crossing = e.status();
+    return false;
   }
   if (!rr.status.ok()) fail(rr.status.code, Stage::Refine, "patch " + std::to_string(p) + ": " + rr.status.message);
   dropUnusedPoints(rr.mesh, bp.size());
   spatialOrder(rr.mesh, bp.size());
   const auto& pmsh = rr.mesh;
-  const Stage refining = clock.enter(Stage::Lift);
+  const Clock::time_point lifting = Clock::now();
+  out.refineSeconds += secondsBetween(start, lifting);
   const size_t nv = pmsh.vertexCount();
-  w.localToGlobal.assign(nv, kNone);
-  w.interiorPositions.assign(nv, F::Vec3{});
-  w.layoutFaces.assign(nv, -1);
-  w.liftFaces.assign(nv, kNone);
-  w.optimizeCache = {};
+  out.interiorPositions.assign(nv, F::Vec3{});
+  out.layoutFaces.assign(nv, -1);
+  out.liftFaces.assign(nv, kNone);
+  out.splits.clear();
   int lastFace = -1;
-  for (size_t v = 0; v < nv; ++v) {
-    if (v < bp.size()) {
-      w.localToGlobal[v] = bp[v].sample;
-      continue;
-    }
+  for (size_t v = bp.size(); v < nv; ++v) {
     // every segment is a boundary chord (the required points are free), so a Steiner vertex on
-    // a segment is a boundary split (segment i joins boundary points i and i + 1)
+    // a segment is a boundary split (segment i joins boundary points i and i + 1): a curve
+    // sample made at the patch's turn (finishMeshing)
     if (const int32_t sg = pmsh.vertexSegment[v]; sg >= 0) {
-      const uint32_t bs = uint32_t(sg);
-      const double bt = pmsh.vertexParam[v];
-      w.localToGlobal[v] = addSplitSample(surf, m.samples, m.patches, w, bp, bs, bt);
+      out.splits.push_back({uint32_t(v), uint32_t(sg), pmsh.vertexParam[v]});
       continue;
     }
     // the walk starts from the previous vertex's face (consecutive refinement vertices are
@@ -377,26 +334,123 @@ void meshPatch(const Surface& surf, const RemeshOptions& opt, Meshing& m, uint32
     if (!liftPoint(w, pmsh.points[2 * v], pmsh.points[2 * v + 1], q, lastFace))
       fail(Code::NumericalFailure, Stage::Lift, "a refinement vertex lies outside the flattened patch");
     lastFace = q.layoutFace;
-    w.interiorPositions[v] = {q.position[0], q.position[1], q.position[2]};
-    w.layoutFaces[v] = q.layoutFace;
-    w.liftFaces[v] = w.pm.faceInput[q.face];
+    out.interiorPositions[v] = {q.position[0], q.position[1], q.position[2]};
+    out.layoutFaces[v] = q.layoutFace;
+    out.liftFaces[v] = w.pm.faceInput[q.face];
   }
-  w.triangles = pmsh.triangles;
-  w.planarPoints = pmsh.points;
-  clock.enter(refining);
+  out.triangles = pmsh.triangles;
+  out.planarPoints = pmsh.points;
+  out.liftSeconds += secondsBetween(lifting, Clock::now());
+  return true;
 }
 
-void optimizeMesh(const Surface& surf, const RemeshOptions& opt, Meshing& m, uint32_t p, RemeshReport& rep,
-                  const std::vector<uint8_t>& active) {
+// A meshing of patch p begins: stamped, so that samples added from now on make it dirty.
+void startMeshing(Meshing& m, uint32_t p) {
   PatchWork& w = *m.patches[p];
+  w.builtAt = ++m.samples.stamp;
+  w.dirty = false;
+  w.needsMesh = false;
+  w.optimized = false;
+}
+
+// The meshing r made from boundary points r.bp becomes patch p's latest: its boundary splits
+// become curve samples (in vertex order) and the patches on their curves dirty; its seconds go
+// to `busy`.
+void finishMeshing(const Surface& surf, Meshing& m, uint32_t p, PatchMeshing& r, StageSeconds& busy) {
+  PatchWork& w = *m.patches[p];
+  const size_t nv = r.planarPoints.size() / 2;
+  w.localToGlobal.assign(nv, kNone);
+  for (size_t v = 0; v < r.bp.size(); ++v) w.localToGlobal[v] = r.bp[v].sample;
+  for (const PatchMeshing::Split& sp : r.splits)
+    w.localToGlobal[sp.vertex] = addSplitSample(surf, m.samples, m.patches, w, r.bp, sp.segment, sp.t);
+  w.interiorPositions = std::move(r.interiorPositions);
+  w.layoutFaces = std::move(r.layoutFaces);
+  w.liftFaces = std::move(r.liftFaces);
+  w.triangles = std::move(r.triangles);
+  w.planarPoints = std::move(r.planarPoints);
+  w.optimizeCache = {};
+  busy.refine += r.refineSeconds;
+  busy.lift += r.liftSeconds;
+}
+
+}  // namespace
+
+PatchMeshing refineApart(const Surface& surf, const RemeshOptions& opt, const Meshing& m, uint32_t p, bool splitSegments) {
+  PatchMeshing r;
+  r.bp = boundaryPoints(surf, m.samples, *m.patches[p]);
+  if (degenerateBoundary(r.bp)) {
+    r.needsRepair = true;
+    return r;
+  }
+  Status crossing;
+  r.needsRepair = !refineAndLift(surf, opt, m, p, splitSegments, r.bp, r, crossing);
+  return r;
+}
+
+void commitMeshing(const Surface& surf, Meshing& m, uint32_t p, PatchMeshing& r, StageSeconds& busy) {
+  startMeshing(m, p);
+  finishMeshing(surf, m, p, r, busy);
+}
+
+void meshPatch(const Surface& surf, const RemeshOptions& opt, Meshing& m, uint32_t p, StageSeconds& busy,
+               bool splitSegments) {
+  PatchWork& w = *m.patches[p];
+  startMeshing(m, p);
+  PatchMeshing r;
+  r.bp = boundaryPoints(surf, m.samples, w);
+  std::vector<BoundaryPoint>& bp = r.bp;
+  // A small patch bounded by short curves can have fewer than 3 boundary samples, or only
+  // collinear ones (two curves between the same two corners): add a sample in the middle of the
+  // longest boundary stretch (shared with the neighbour like any segment split) until it has a
+  // proper polygon.
+  for (int guard = 0; guard < 8 && degenerateBoundary(bp); ++guard) {
+    size_t longest = 0;
+    double best = -1;
+    for (size_t i = 0; i < bp.size(); ++i) {
+      // its length along the flattened boundary
+      double len = 0;
+      const auto& loop = w.pm.boundaryLoops[0];
+      for (const Piece& pc : stretch(w, bp[i], bp[(i + 1) % bp.size()], bp.size())) {
+        const auto& h = loop[pc.k];
+        uint32_t va = w.pm.mesh.triangles[3 * h.face + h.corner], vb = w.pm.mesh.triangles[3 * h.face + (h.corner + 1) % 3];
+        len += (pc.t1 - pc.t0) * dmath::hypot(w.flat.uv[2 * vb] - w.flat.uv[2 * va], w.flat.uv[2 * vb + 1] - w.flat.uv[2 * va + 1]);
+      }
+      if (len > best) best = len, longest = i;
+    }
+    addSplitSample(surf, m.samples, m.patches, w, bp, uint32_t(longest), 0.5);
+    w.builtAt = ++m.samples.stamp;
+    w.dirty = false;
+    bp = boundaryPoints(surf, m.samples, w);
+  }
+  if (degenerateBoundary(bp)) fail(Code::InternalError, Stage::Refine, "patch " + std::to_string(p) + ": its boundary samples do not make a polygon");
+  for (int attempt = 0;; ++attempt) {
+    Status rejected;
+    if (refineAndLift(surf, opt, m, p, splitSegments, bp, r, rejected)) break;
+    if (attempt >= kCrossingRepairs) fail(rejected.code, rejected.stage, rejected.message);
+    // The chords between boundary samples cross where the boundary doubles back within a sample
+    // spacing: split the crossing chords (shared with the neighbours like any segment split)
+    // and try again.
+    const std::vector<uint32_t> crossing = crossingSegments(boundaryPslg(bp));
+    if (crossing.empty()) fail(Code::InternalError, Stage::Refine, "patch " + std::to_string(p) + ": invalid boundary, but no chords cross");
+    for (uint32_t sg : crossing) addSplitSample(surf, m.samples, m.patches, w, bp, sg, 0.5);
+    w.builtAt = ++m.samples.stamp;
+    w.dirty = false;
+    bp = boundaryPoints(surf, m.samples, w);
+  }
+  finishMeshing(surf, m, p, r, busy);
+}
+
+OptimizeResult optimizeMesh(const Surface& surf, const RemeshOptions& opt, const CurveSamples& samples, PatchWork& w,
+                            const std::vector<uint8_t>& active) {
+  OptimizeResult res;
   w.optimized = true;
-  if (!opt.optimize || opt.optimizeIterations == 0) return;
+  if (!opt.optimize || opt.optimizeIterations == 0) return res;
   const size_t nv = w.planarPoints.size() / 2;
   std::vector<F::Vec3> pos(nv);
   std::vector<uint8_t> fixed(nv, 0);
   for (size_t v = 0; v < nv; ++v) {
     fixed[v] = w.localToGlobal[v] != kNone;
-    pos[v] = fixed[v] ? m.samples.cm.samples[w.localToGlobal[v]].position : w.interiorPositions[v];
+    pos[v] = fixed[v] ? samples.cm.samples[w.localToGlobal[v]].position : w.interiorPositions[v];
   }
   optimization::OptimizeOptions oo;
   oo.minAngleDeg = opt.minAngleDeg;
@@ -432,8 +486,9 @@ void optimizeMesh(const Surface& surf, const RemeshOptions& opt, Meshing& m, uin
   optimization::OptimizeStats st = optimization::optimizePatch(w.planarPoints, w.triangles, pos, fixed, lift, oo, active, guard, &w.optimizeCache);
   for (size_t v = 0; v < nv; ++v)
     if (!fixed[v]) w.interiorPositions[v] = pos[v];
-  rep.optimizeMoves += st.moves;
-  rep.optimizeFlips += st.flips;
+  res.moves = st.moves;
+  res.flips = st.flips;
+  return res;
 }
 
 }  // namespace conformesh::pipeline

@@ -37,19 +37,28 @@ struct Progress {
   void check(Stage s, double fraction) const;
 };
 
+using Clock = std::chrono::steady_clock;
+inline double secondsBetween(Clock::time_point from, Clock::time_point to) {
+  return std::chrono::duration<double>(to - from).count();
+}
+
 //! Wall time per stage (RemeshReport::seconds): the time between two switches goes to the stage
-//! that was current.
+//! that was current, and the wall time of a section whose stages run side by side on threads is
+//! split among them in proportion to the seconds their items spent in each (split).
 class StageClock {
  public:
   explicit StageClock(Stage first);
   //! Charge the time since the last switch to the current stage and make s current; returns the
   //! stage left (to go back to after a nested one).
   Stage enter(Stage s);
+  //! Charge the time since the last switch to the stages in proportion to `busy`, the seconds a
+  //! section's items spent in each stage summed over the threads (all to the current stage when
+  //! busy has none); the current stage stays current. The stages still sum to the wall time.
+  void split(const StageSeconds& busy);
   //! Every stage's seconds so far (the current one's up to now) and the total since construction.
   StageSeconds seconds();
 
  private:
-  using Clock = std::chrono::steady_clock;
   StageSeconds seconds_;
   Stage current_;
   Clock::time_point start_, last_;

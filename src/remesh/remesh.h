@@ -137,7 +137,8 @@ struct ExemptCorner {
 };
 
 //! Wall seconds per stage of remesh(), one field per row of CONFORMESH_REMESH_STAGES
-//! (core/stages.h), and the whole call.
+//! (core/stages.h), and the whole call; the stages sum to it. Refine and lift run side by side
+//! on the threads: their section's wall time is split in proportion to their thread-seconds.
 struct StageSeconds {
 #define CONFORMESH_X(id, key, name, label, weight) double key = 0;
   CONFORMESH_REMESH_STAGES(CONFORMESH_X)

@@ -3,6 +3,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <memory>
 #include <string>
 #include <unordered_map>
 
@@ -40,7 +41,59 @@ Status reportOutput(const Surface& surf, const CurveSamples& cs, const MeshBuffe
                     ExemptCorners& exempt, const RemeshOptions& opt, RemeshReport& rep) {
   const MeshBuffers& in = surf.input();
   std::vector<double> triMinRad;  // per triangle, NaN when degenerate
-  auto as = quality::angleStats(out, &triMinRad);
+  quality::AngleStats as;
+  quality::EdgeTopology et;
+  quality::TopologySummary ti;
+  std::unique_ptr<quality::TriangleMeshDistance> dist;  // the input's, for the max vertex distance
+  quality::HausdorffOptions ho;
+  ho.samplesPerSide = opt.hausdorffSamples;
+  ho.nearTriangleOfVertexA = &vertexFace;  // the input face each output vertex was lifted onto: a start
+  ho.threads = unsigned(opt.threads);
+  quality::HausdorffWork hw;
+  // feature curves kept: every pair of consecutive samples is an output edge
+  const auto countFeatureCurves = [&] {
+    // (vertex -> neighbours in compressed rows: a hash set of every edge cost 5x more here)
+    std::vector<uint32_t> nbrStart(out.vertexCount() + 1, 0), nbr(2 * out.triangles.size());
+    for (uint32_t v : out.triangles) nbrStart[v + 1] += 2;
+    for (size_t v = 0; v < out.vertexCount(); ++v) nbrStart[v + 1] += nbrStart[v];
+    {
+      std::vector<uint32_t> fill(nbrStart.begin(), nbrStart.end() - 1);
+      for (size_t t = 0; t < out.triangles.size(); t += 3)
+        for (int c = 0; c < 3; ++c) {
+          uint32_t a = out.triangles[t + c], b = out.triangles[t + (c + 1) % 3];
+          nbr[fill[a]++] = b;
+          nbr[fill[b]++] = a;
+        }
+    }
+    auto isEdge = [&](uint32_t a, uint32_t b) {
+      return std::find(nbr.begin() + nbrStart[a], nbr.begin() + nbrStart[a + 1], b) != nbr.begin() + nbrStart[a + 1];
+    };
+    for (size_t c = 0; c < surf.seg.curves.size(); ++c) {
+      if (surf.seg.curves[c].kind == F::EdgeKind::Cut) continue;
+      ++rep.featureCurves;
+      bool kept = true;
+      const auto& ids = cs.cm.curveSamples[c];
+      for (size_t i = 0; i + 1 < ids.size() && kept; ++i) {
+        kept = isEdge(ids[i], ids[i + 1]);
+      }
+      rep.featureCurvesKept += kept;
+    }
+  };
+  // the passes over the output and the input, and what the distances need, do not depend on each
+  // other: side by side, the largest first (Hausdorff job 0: the larger mesh's tree, the output's)
+  enum : int { kEdges = -1, kAngles = -2, kInputTree = -3, kInputTopology = -4, kFeatureCurves = -5 };
+  std::vector<int> jobs = {kEdges, kAngles, kFeatureCurves, kInputTree, kInputTopology};
+  if (opt.computeHausdorff) jobs = {0, kEdges, kAngles, 1, 2, 3, kFeatureCurves, kInputTree, kInputTopology};
+  parallelFor(jobs.size(), unsigned(opt.threads), [&](size_t i) {
+    switch (jobs[i]) {
+      case kEdges: et = quality::edgeStatsAndTopology(out); break;
+      case kAngles: as = quality::angleStats(out, &triMinRad); break;
+      case kInputTree: dist = std::make_unique<quality::TriangleMeshDistance>(in); break;
+      case kInputTopology: ti = quality::topologySummary(in); break;
+      case kFeatureCurves: countFeatureCurves(); break;
+      default: quality::hausdorffJob(hw, out, in, ho, size_t(jobs[i]));
+    }
+  });
   rep.triangles = out.triangleCount();
   rep.vertices = out.vertexCount();
   rep.minAngle = as.minAngle;
@@ -81,10 +134,9 @@ Status reportOutput(const Surface& surf, const CurveSamples& cs, const MeshBuffe
     rep.minAngleOutsideExempt = std::min(rep.minAngleOutsideExempt, a);
     if (a < opt.minAngleDeg) ++rep.trianglesBelowBoundOutsideExempt;
   }
-  const quality::EdgeTopology et = quality::edgeStatsAndTopology(out);
   rep.meanEdgeLength = et.edges.meanLength;
   rep.delaunayFraction = et.edges.delaunayFraction;
-  const quality::TopologySummary ti = quality::topologySummary(in), &to = et.topology;
+  const quality::TopologySummary& to = et.topology;
   // a broken mesh is never a success: a defect here is a bug of the stitch or the repair
   const std::string defect = topologyDifference(to, ti);
   rep.topologyPreserved = defect.empty();
@@ -93,40 +145,12 @@ Status reportOutput(const Surface& surf, const CurveSamples& cs, const MeshBuffe
     topologyStatus = Status{Code::InternalError, Stage::Report, "output topology differs from the input: " + defect};
     if (!opt.keepDefectiveOutput) fail(topologyStatus.code, topologyStatus.stage, topologyStatus.message);
   }
-  // feature curves kept: every pair of consecutive samples is an output edge
-  // (vertex -> neighbours in compressed rows: a hash set of every edge cost 5x more here)
-  std::vector<uint32_t> nbrStart(out.vertexCount() + 1, 0), nbr(2 * out.triangles.size());
-  for (uint32_t v : out.triangles) nbrStart[v + 1] += 2;
-  for (size_t v = 0; v < out.vertexCount(); ++v) nbrStart[v + 1] += nbrStart[v];
-  {
-    std::vector<uint32_t> fill(nbrStart.begin(), nbrStart.end() - 1);
-    for (size_t t = 0; t < out.triangles.size(); t += 3)
-      for (int c = 0; c < 3; ++c) {
-        uint32_t a = out.triangles[t + c], b = out.triangles[t + (c + 1) % 3];
-        nbr[fill[a]++] = b;
-        nbr[fill[b]++] = a;
-      }
-  }
-  auto isEdge = [&](uint32_t a, uint32_t b) {
-    return std::find(nbr.begin() + nbrStart[a], nbr.begin() + nbrStart[a + 1], b) != nbr.begin() + nbrStart[a + 1];
-  };
-  for (size_t c = 0; c < surf.seg.curves.size(); ++c) {
-    if (surf.seg.curves[c].kind == F::EdgeKind::Cut) continue;
-    ++rep.featureCurves;
-    bool kept = true;
-    const auto& ids = cs.cm.curveSamples[c];
-    for (size_t i = 0; i + 1 < ids.size() && kept; ++i) {
-      kept = isEdge(ids[i], ids[i + 1]);
-    }
-    rep.featureCurvesKept += kept;
-  }
   rep.sharpEdges = surf.seg.sharpEdgeCount;
   rep.cutEdges = surf.seg.cutEdgeCount;
   rep.droppedFeatureEdges = surf.seg.droppedFeatureEdges;
   rep.curves = surf.seg.curves.size();
   rep.curveSamples = cs.cm.samples.size();
   {
-    quality::TriangleMeshDistance dist(in);
     // in chunks of a fixed size, each with its own running max: the same searches on any number
     // of threads, and the max of the chunks' maxima is the max over every vertex
     const size_t nv = out.vertexCount();
@@ -140,9 +164,9 @@ Status reportOutput(const Surface& surf, const CurveSamples& cs, const MeshBuffe
         // distance: at most the worst so far, the vertex cannot change the maximum
         if (vertexFace[v] < in.triangleCount()) {
           hint = vertexFace[v];
-          if (dist.faceDistanceSquared(vertexFace[v], p) <= worst) continue;
+          if (dist->faceDistanceSquared(vertexFace[v], p) <= worst) continue;
         }
-        auto hit = dist.closest(p, hint);
+        auto hit = dist->closest(p, hint);
         hint = hit.primitive;
         worst = std::max(worst, hit.distanceSquared);
       }
@@ -152,13 +176,7 @@ Status reportOutput(const Surface& surf, const CurveSamples& cs, const MeshBuffe
     for (double w : chunkWorst) worst = std::max(worst, w);
     rep.maxDistanceToInputRel = std::sqrt(worst) / surf.sizing.diagonal;
   }
-  if (opt.computeHausdorff) {
-    quality::HausdorffOptions ho;
-    ho.samplesPerSide = opt.hausdorffSamples;
-    ho.nearTriangleOfVertexA = &vertexFace;
-    ho.threads = unsigned(opt.threads);  // the input face each output vertex was lifted onto: a start
-    rep.hausdorffRel = quality::hausdorffDistance(out, in, ho).relative;
-  }
+  if (opt.computeHausdorff) rep.hausdorffRel = quality::hausdorffMeasure(hw, out, in, ho).relative;
   return topologyStatus;
 }
 

@@ -1,9 +1,11 @@
 #include "remesh/rounds.h"
 
 #include <algorithm>
+#include <exception>
 #include <string>
 
-#include "remesh/mesh_patch.h"
+#include "core/parallel_for.h"
+#include "remesh/mesh_patches.h"
 #include "remesh/slide_samples.h"
 #include "remesh/stitch.h"
 
@@ -15,6 +17,43 @@ constexpr int kConformingRounds = 8;
 // Certificate rounds past the cap for a stitch defect still there, with its patches keeping their
 // boundary (one opened it in every case measured; the second is a margin).
 constexpr int kKeepBoundaryRounds = 2;
+
+// optimizeMesh on every patch p with optimize[p] (its vertices active[p], empty: all), on the
+// threads, report(i) on the calling thread after each; the report's counts added in patch order.
+void optimizePatches(const Surface& surf, const RemeshOptions& opt, Meshing& m, const std::vector<uint8_t>& optimize,
+                     const std::vector<std::vector<uint8_t>>& active, const std::function<void(size_t, size_t)>& report,
+                     RemeshReport& rep) {
+  std::vector<uint32_t> todo;
+  for (uint32_t p = 0; p < m.patches.size(); ++p)
+    if (optimize[p]) todo.push_back(p);
+  // the largest first; an error is thrown in patch order, as a serial loop would
+  std::vector<double> cost(todo.size());
+  for (size_t i = 0; i < todo.size(); ++i) {
+    const std::vector<uint8_t>& a = active[todo[i]];
+    cost[i] = a.empty() ? double(m.patches[todo[i]]->planarPoints.size())
+                        : double(std::count_if(a.begin(), a.end(), [](uint8_t x) { return x != 0; }));
+  }
+  const std::vector<size_t> byCost = largestFirst(cost);
+  std::vector<OptimizeResult> done(todo.size());
+  std::vector<std::exception_ptr> error(todo.size());
+  parallelFor(
+      todo.size(), unsigned(opt.threads),
+      [&](size_t k) {
+        const size_t i = byCost[k];
+        try {
+          done[i] = optimizeMesh(surf, opt, m.samples, *m.patches[todo[i]], active[todo[i]]);
+        } catch (...) {
+          error[i] = std::current_exception();
+        }
+      },
+      [&](size_t finished) { report(finished, todo.size()); });
+  for (const std::exception_ptr& e : error)
+    if (e) std::rethrow_exception(e);
+  for (const OptimizeResult& r : done) {
+    rep.optimizeMoves += r.moves;
+    rep.optimizeFlips += r.flips;
+  }
+}
 
 }  // namespace
 
@@ -36,6 +75,7 @@ BestRound meshRounds(const Surface& surf, const RemeshOptions& opt, const Progre
       else progress.check(Stage::Certificate, double(cert) / double(opt.maxCertificateRounds + 1));
     };
     clock.enter(Stage::Refine);
+    StageSeconds busy;  // the seconds the patches' refinements and lifts took, over the threads
     // Refine every patch that needs it; a refinement that splits a boundary segment adds a
     // curve sample there, which the patches on the other side of that curve must include: they
     // are refined again from scratch with it, until no patch splits a segment (samples only get
@@ -46,39 +86,45 @@ BestRound meshRounds(const Surface& surf, const RemeshOptions& opt, const Progre
       for (uint32_t p = 0; p < work.size(); ++p)
         if (work[p]->needsMesh || (work[p]->dirty && round < kConformingRounds)) todo.push_back(p);
       if (todo.empty()) break;
-      for (size_t i = 0; i < todo.size(); ++i) {
-        meshPatch(surf, opt, m, todo[i], clock, !work[todo[i]]->keepBoundary);
-        report(Stage::Refine, double(i + 1) / double(todo.size()));
-      }
+      std::vector<uint8_t> split(todo.size());
+      for (size_t i = 0; i < todo.size(); ++i) split[i] = !work[todo[i]]->keepBoundary;
+      size_t meshed = 0;
+      meshPatches(
+          surf, opt, m, todo, split, [](uint32_t) { return true; },
+          [&](size_t i) {
+            meshed = i + 1;
+            report(Stage::Refine, double(meshed) / double(todo.size()));
+          },
+          [&] { report(Stage::Refine, double(meshed) / double(todo.size())); }, busy);
     }
     // past the round cap (refinements near small angles between curves can keep splitting
     // each other's segments): refine the patches still missing samples once more, without
     // splitting their boundary, so every patch has exactly the curve samples and they stitch
-    for (uint32_t p = 0; p < work.size(); ++p)
-      if (work[p]->dirty) {
-        meshPatch(surf, opt, m, p, clock, false);
-        rep.warnings.push_back("patch " + std::to_string(p) + ": refined without boundary splits after " +
-                               std::to_string(kConformingRounds) + " conforming rounds");
-      }
+    std::vector<uint32_t> all(work.size());
+    for (uint32_t p = 0; p < work.size(); ++p) all[p] = p;
+    meshPatches(
+        surf, opt, m, all, std::vector<uint8_t>(work.size(), 0), [&](uint32_t p) { return work[p]->dirty; },
+        [&](size_t p) {
+          rep.warnings.push_back("patch " + std::to_string(p) + ": refined without boundary splits after " +
+                                 std::to_string(kConformingRounds) + " conforming rounds");
+        },
+        [&] { report(Stage::Refine, 1.0); }, busy);
+    // refine and lift ran side by side on the threads: the section's time split between them
+    clock.split(busy);
     clock.enter(Stage::Optimize);
     report(Stage::Optimize, 0);
-    std::vector<uint32_t> unoptimized;
-    for (uint32_t p = 0; p < work.size(); ++p)
-      if (!work[p]->optimized) unoptimized.push_back(p);
-    for (size_t i = 0; i < unoptimized.size(); ++i) {
-      optimizeMesh(surf, opt, m, unoptimized[i], rep);
-      report(Stage::Optimize, double(i + 1) / double(unoptimized.size()));
-    }
+    std::vector<std::vector<uint8_t>> active(work.size());
+    std::vector<uint8_t> optimize(work.size());
+    for (uint32_t p = 0; p < work.size(); ++p) optimize[p] = !work[p]->optimized;
+    optimizePatches(surf, opt, m, optimize, active,
+                    [&](size_t i, size_t n) { report(Stage::Optimize, double(i) / double(n)); }, rep);
     // curve samples slide along their curves, then the interior around each slid sample gets
     // another optimization (local: the vertices of its stars first), guarded so that it does not
     // take the output farther from the input
     if (opt.optimize && opt.optimizeIterations > 0) {
-      const std::vector<std::vector<uint8_t>> slid = slideSamples(surf, opt, m, rep);
-      for (uint32_t p = 0; p < work.size(); ++p)
-        if (!slid[p].empty()) {
-          optimizeMesh(surf, opt, m, p, rep, slid[p]);
-          report(Stage::Optimize, 1.0);
-        }
+      active = slideSamples(surf, opt, m, rep);
+      for (uint32_t p = 0; p < work.size(); ++p) optimize[p] = !active[p].empty();
+      optimizePatches(surf, opt, m, optimize, active, [&](size_t, size_t) { report(Stage::Optimize, 1.0); }, rep);
     }
     rep.conformingRounds = std::max(rep.conformingRounds, round);
     clock.enter(Stage::Stitch);
@@ -97,7 +143,7 @@ BestRound meshRounds(const Surface& surf, const RemeshOptions& opt, const Progre
     exempt.indexWedges(surf, m.samples);
     // A round never wins by trading bad triangles for collapsed ones, and a stitch defect (the
     // surface is not manifold there) is worse than any angle: a round with fewer always wins.
-    const Verdict verdict = judge(out, triPatch, exempt);
+    const Verdict verdict = judge(out, triPatch, exempt, unsigned(opt.threads));
     const size_t defects = verdict.defects();
     if (defects < bestDoubled ||
         (defects == bestDoubled && (verdict.collapsed < bestCollapsed || (verdict.collapsed == bestCollapsed && verdict.bad < bestBad)))) {
