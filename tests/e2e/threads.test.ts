@@ -29,7 +29,7 @@ const MIME: Record<string, string> = {
 // The library's browser entry, the models in reach of fetch, and remesh() giving an output's
 // SHA-256 (of its OFF bytes) and the call's time.
 const testPage = `<!doctype html><html><head><meta charset="utf-8"></head><body><script type="module">
-import { createRemesher } from '/dist/browser.js';
+import { createRemesher, init } from '/dist/browser.js';
 const hex = (b) => [...new Uint8Array(b)].map((x) => x.toString(16).padStart(2, '0')).join('');
 window.threadsTest = {
   createRemesher,
@@ -41,6 +41,14 @@ window.threadsTest = {
     const ms = performance.now() - t0;
     const off = await r.writeMesh(res.mesh, 'off');
     return { ms, sha: hex(await crypto.subtle.digest('SHA-256', off)), triangles: res.report.triangles };
+  },
+  // the same on the page's own thread (init(): the synchronous API)
+  async remeshHere(name, options) {
+    const cm = await init();
+    const bytes = new Uint8Array(await (await fetch('/data/' + name)).arrayBuffer());
+    const res = cm.remesh(cm.readMesh(bytes, { fileName: name }), options);
+    const off = cm.writeMesh(res.mesh, 'off');
+    return { threads: cm.threads, sha: hex(await crypto.subtle.digest('SHA-256', off)) };
   },
 };
 </script></body></html>`;
@@ -79,7 +87,13 @@ function nativeSha(name: string, rel: number, dir: string): string {
 }
 
 interface Run { ms: number; sha: string; triangles: number }
-type Win = { threadsTest: { createRemesher: (o: object) => unknown; remesh: (r: unknown, name: string, o: object) => Promise<Run> } };
+type Win = {
+  threadsTest: {
+    createRemesher: (o: object) => unknown;
+    remesh: (r: unknown, name: string, o: object) => Promise<Run>;
+    remeshHere: (name: string, o: object) => Promise<{ threads: number; sha: string }>;
+  };
+};
 
 const small: [string, number][] = [['fandisk.off', 0.02], ['mech-holes-shark.off', 0.03]];
 
@@ -132,7 +146,8 @@ describe('threaded WebAssembly build in headless Chromium', () => {
       type R = { threads(): Promise<number>; terminate(): void };
       const one = t.createRemesher({ workers: 1, init: { threads: 1 } }) as R;
       const mt = t.createRemesher({ workers: 1 }) as R;
-      const out = { threads: [await one.threads(), await mt.threads()], small: [] as [Run, Run, Run][], single: [] as number[], two: [] as number[], mtOne: [] as number[] };
+      const here = await t.remeshHere(models[0]![0], { targetEdgeLengthRel: models[0]![1], computeHausdorff: false });
+      const out = { here, threads: [await one.threads(), await mt.threads()], small: [] as [Run, Run, Run][], single: [] as number[], two: [] as number[], mtOne: [] as number[] };
       for (const [name, rel] of models) {
         const o = { targetEdgeLengthRel: rel, computeHausdorff: false };
         out.small.push([await t.remesh(one, name, o), await t.remesh(mt, name, o), await t.remesh(mt, name, { ...o, threads: 1 })]);
@@ -149,6 +164,9 @@ describe('threaded WebAssembly build in headless Chromium', () => {
     }, small);
     expect(r.threads[0]).toBe(1);
     expect(r.threads[1]).toBeGreaterThan(1);
+    // the page's own thread: the threaded build too, the same bytes
+    expect(r.here.threads).toBeGreaterThan(1);
+    expect(r.here.sha).toBe(nativeSha(small[0]![0], small[0]![1], tmp));
     small.forEach(([name, rel], i) => {
       const [single, threaded, threadedOne] = r.small[i]!;
       const expected = nativeSha(name, rel, tmp);
