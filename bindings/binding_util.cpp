@@ -5,6 +5,11 @@
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
+#include <memory>
+
+#ifdef __EMSCRIPTEN_PTHREADS__
+#include <emscripten/threading.h>
+#endif
 
 namespace conformesh::bindings {
 
@@ -120,7 +125,15 @@ bool boolOption(const val& options, const char* name, bool fallback, Stage stage
 
 ProgressFn progressFromJs(const val& callback) {
   if (callback.isUndefined() || callback.isNull()) return {};
-  return [callback](Stage stage, double fraction) { return callback(int(stage), fraction).as<bool>(); };
+  // A JS value lives on the module's main thread: copies of the ProgressFn share one handle (no
+  // JS call to copy it), and a report from a pool thread (threaded build) is skipped, not a crash.
+  auto fn = std::make_shared<val>(callback);
+  return [fn](Stage stage, double fraction) {
+#ifdef __EMSCRIPTEN_PTHREADS__
+    if (!emscripten_is_main_runtime_thread()) return true;
+#endif
+    return (*fn)(int(stage), fraction).as<bool>();
+  };
 }
 
 }  // namespace conformesh::bindings

@@ -91,7 +91,8 @@ bool boolOption(const emscripten::val& options, const char* name, bool fallback,
 //! Wrap a JS function (stage: number, fraction: number) => boolean as a ProgressFn; undefined or
 //! null gives an empty ProgressFn. The JS function must not throw (the facade's wrapper catches
 //! and returns false, which cancels): a JS exception unwinding through C++ frames would skip
-//! destructors and leak.
+//! destructors and leak. In the threaded build only the module's main thread calls it (a report
+//! from a pool thread is skipped and means "go on").
 ProgressFn progressFromJs(const emscripten::val& callback);
 
 }  // namespace conformesh::bindings

@@ -168,7 +168,7 @@ val remeshJs(val positions, val triangles, val uvs, val attributes, val vertexSi
     }
     o.optimizeIterations = int(bindings::integerOption(options, "optimizeIterations", o.optimizeIterations, st, 0, 1000));
     o.optimizeTolerance = bindings::numberOption(options, "optimizeTolerance", o.optimizeTolerance, st, 0);
-    // accepted for the native API's sake; without pthreads the library runs on one thread
+    // the single-threaded module accepts it and runs on one thread; the threaded one (-pthread) uses it
     o.threads = int(bindings::integerOption(options, "threads", o.threads, st, 0, 1024));
     o.hausdorffSamples =
         size_t(bindings::integerOption(options, "hausdorffSamples", double(o.hausdorffSamples), st, 1, 1e8));

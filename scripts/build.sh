@@ -20,6 +20,10 @@ cmake --build build/wasm -j "$JOBS"
 echo "== npm package (dist/)"
 rm -rf dist && mkdir -p dist
 cp build/wasm/conformesh.mjs build/wasm/conformesh.wasm dist/
+# the threaded build (cross-origin isolated pages; CONFORMESH_WASM_THREADS=ON by default)
+if [ -f build/wasm/conformesh-mt.wasm ]; then
+  cp build/wasm/conformesh-mt.mjs build/wasm/conformesh-mt.wasm build/wasm/conformesh-mt.worker.js dist/
+fi
 if [ -f bindings/tsconfig.json ]; then
   npx tsc -p bindings/tsconfig.json
 fi

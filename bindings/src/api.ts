@@ -32,6 +32,8 @@ import type {
 export interface Conformesh {
   /** Library version ("0.1.0"). */
   readonly version: string;
+  /** Threads a call runs on: above 1 in the threaded build (InitOptions.threads), else 1. */
+  readonly threads: number;
   /** Read a mesh file's bytes. `format` or options: see ReadMeshOptions. */
   readMesh(bytes: MeshBytes, format?: MeshFormat | 'auto' | ReadMeshOptions): ReadMeshResult;
   /** Write a mesh to file bytes in `format`. */
@@ -260,6 +262,7 @@ function readOptions(format: unknown): ReadMeshOptions {
 export function bindApi(raw: RawModule): Conformesh {
   const api: Conformesh = {
     version: raw.version(),
+    threads: raw.threads ?? 1,
 
     readMesh(bytes, format) {
       const data = toBytes(bytes);

@@ -19,12 +19,13 @@ export type WorkerMethod =
   | 'readPoly'
   | 'flatten'
   | 'remesh'
-  | 'version';
+  | 'version'
+  | 'threads';
 
 export interface InitRequest {
   id: number;
   type: 'init';
-  options: { wasmModule?: WebAssembly.Module; wasmBinary?: ArrayBuffer | Uint8Array; wasmUrl?: string };
+  options: { wasmModule?: WebAssembly.Module; wasmBinary?: ArrayBuffer | Uint8Array; wasmUrl?: string; threads?: number };
 }
 
 export interface CallRequest {

@@ -81,6 +81,8 @@ export interface RawModule {
   stackSave(): number;
   stackRestore(sp: number): void;
   HEAP8: Int8Array;
+  /** Threads a call runs on (set by the loader; 1 for the single-threaded build). */
+  threads?: number;
 }
 
 /** Options accepted by the Emscripten factory (the subset we use). */
@@ -92,6 +94,12 @@ export interface RawModuleOptions {
   ) => object;
   print?: (text: string) => void;
   printErr?: (text: string) => void;
+  /** Threaded build: pthread workers started with the module (-sPTHREAD_POOL_SIZE=Module.pthreadPoolSize). */
+  pthreadPoolSize?: number;
+  /** Threaded build: the glue's URL, which each pthread worker imports. */
+  mainScriptUrlOrBlob?: string;
+  /** Where the glue's companion files are (the pthread worker script). */
+  locateFile?: (path: string, prefix: string) => string;
 }
 
 export type RawFactory = (options?: RawModuleOptions) => Promise<RawModule>;

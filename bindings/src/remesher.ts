@@ -1,6 +1,6 @@
 // createRemesher: the API running in workers (module Web Workers in browsers, worker_threads in
 // Node), so long calls never block the page. Protocol: protocol.ts.
-import { wasmLocation } from './loader.js';
+import { threadsFor, wasmLocation } from './loader.js';
 import { platform } from './platform.js';
 import type { CallRequest, WorkerMethod, WorkerRequest, WorkerResponse } from './protocol.js';
 import { transferablesOf } from './protocol.js';
@@ -64,8 +64,11 @@ export interface RemesherOptions {
    * {type: 'module'})` in browsers, a worker_threads Worker running node-worker.js in Node.
    */
   createWorker?: () => WorkerLike | Promise<WorkerLike>;
-  /** Passed to each worker's module loader (e.g. a compiled WebAssembly.Module to skip compiling). */
-  init?: { wasmModule?: WebAssembly.Module; wasmBinary?: ArrayBuffer | Uint8Array; wasmUrl?: string };
+  /**
+   * Passed to each worker's module loader (e.g. a compiled WebAssembly.Module to skip compiling;
+   * `threads`: InitOptions.threads, the threads of each worker's calls).
+   */
+  init?: { wasmModule?: WebAssembly.Module; wasmBinary?: ArrayBuffer | Uint8Array; wasmUrl?: string; threads?: number };
 }
 
 /**
@@ -84,6 +87,8 @@ export interface Remesher {
   flatten(mesh: MeshLike, options?: FlattenOptions, call?: CallOptions): Promise<FlattenResult>;
   remesh(mesh: MeshLike, options?: RemeshOptions, call?: CallOptions): Promise<RemeshResult>;
   version(): Promise<string>;
+  /** Threads a call runs on in a worker (above 1 with the threaded build: cross-origin isolated pages). */
+  threads(): Promise<number>;
   /** Stop every worker; pending calls reject with 'Cancelled'. */
   terminate(): void;
 }
@@ -181,7 +186,9 @@ export function createRemesher(options: RemesherOptions = {}): Remesher {
     if (given.wasmModule || given.wasmBinary || platform().name === 'node' || typeof WebAssembly === 'undefined' || typeof fetch !== 'function')
       return Promise.resolve(given);
     shared ??= (async () => {
-      const url = given.wasmUrl ?? wasmLocation();
+      // the build the workers load (they are as cross-origin isolated as this page)
+      const threads = threadsFor(given);
+      const url = given.wasmUrl ?? wasmLocation(threads > 1);
       try {
         const response = await fetch(url);
         if (!response.ok) return given;
@@ -189,7 +196,7 @@ export function createRemesher(options: RemesherOptions = {}): Remesher {
           typeof WebAssembly.compileStreaming === 'function' && (response.headers.get('content-type') ?? '').startsWith('application/wasm')
             ? await WebAssembly.compileStreaming(response)
             : await WebAssembly.compile(await response.arrayBuffer());
-        return { ...given, wasmModule };
+        return { ...given, wasmModule, threads };
       } catch {
         return given;
       }
@@ -304,6 +311,7 @@ export function createRemesher(options: RemesherOptions = {}): Remesher {
     remesh: async (mesh, options, call) =>
       (await submit('remesh', [toMesh(mesh, 'api'), plainOptions(options)], call)) as RemeshResult,
     version: async () => (await submit('version', [])) as string,
+    threads: async () => (await submit('threads', [])) as number,
     terminate: () => {
       if (terminated) return;
       terminated = true;

@@ -356,8 +356,9 @@ export interface RemeshOptions {
   optimizeTolerance?: number;
   /**
    * Threads over the patches and the report's distances, an integer in [0, 1024]; 0 (default) the
-   * hardware's concurrency. The output is the same for every count. The WebAssembly build has no
-   * threads: it accepts the option and runs on one.
+   * hardware's concurrency. The output is the same for every count. In WebAssembly, the threaded
+   * build (cross-origin isolated pages: InitOptions.threads) runs on up to its pool's threads; the
+   * single-threaded build (elsewhere, and in Node) accepts the option and runs on one.
    */
   threads?: number;
   /** Sampled two-sided Hausdorff distance in the report; default true. */

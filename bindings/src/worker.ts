@@ -63,6 +63,7 @@ const methods: Record<WorkerMethod, MethodImpl> = {
     return r;
   },
   version: (api) => api.version,
+  threads: (api) => api.threads,
 };
 
 function errorData(e: unknown): ConformeshErrorData {

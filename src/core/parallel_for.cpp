@@ -15,6 +15,9 @@
 #include <thread>
 #include <vector>
 #endif
+#ifdef __EMSCRIPTEN_PTHREADS__
+#include <emscripten/threading.h>
+#endif
 
 namespace conformesh {
 namespace {
@@ -51,7 +54,12 @@ unsigned resolveThreads(unsigned threads) {
 }
 
 void parallelFor(size_t n, unsigned threads, const std::function<void(size_t)>& fn, const std::function<void(size_t)>& onDone) {
-  const size_t count = std::min<size_t>(resolveThreads(threads), n);
+  size_t count = std::min<size_t>(resolveThreads(threads), n);
+#ifdef __EMSCRIPTEN_PTHREADS__
+  // Emscripten starts a pthread's thread from the module's main thread only: asked from a pthread
+  // (a nested loop), the start waits for that thread's event loop, blocked here waiting for it.
+  if (!emscripten_is_main_runtime_thread()) count = 1;
+#endif
   if (count <= 1) return serialFor(n, fn, onDone);
   std::atomic<size_t> next{0};
   std::atomic<bool> stop{false};

@@ -23,7 +23,9 @@ unsigned resolveThreads(unsigned threads);
 //! count of items finished so far, after each item it runs and whenever a worker finishes one
 //! while it waits; an exception from it (a cancel) stops the taking of new items and is rethrown
 //! once the items already taken have finished. One thread (or a build without threads): the plain
-//! loop, fn(i) then onDone(i + 1).
+//! loop, fn(i) then onDone(i + 1). The WebAssembly build with pthreads runs the plain loop too when
+//! called from a thread other than the module's main thread (a nested loop), and on fewer threads
+//! when its thread pool runs out.
 void parallelFor(size_t n, unsigned threads, const std::function<void(size_t)>& fn,
                  const std::function<void(size_t)>& onDone = {});
 

@@ -11,6 +11,7 @@ import { chromium, type BrowserContext, type Page } from 'playwright-core';
 import { build } from 'vite';
 import { afterAll, beforeAll, describe, expect, it } from 'vitest';
 import { createRemesher, readMesh } from '../../dist/index.js';
+import { listenLocal } from './listen.ts';
 import { decodePng, pixelStats, type Image } from './png.ts';
 import { stageFraction } from '../../web/src/stages.ts';
 import { GROUPS, entryOf, reportValues, reportedStages, stageKey } from '../../web/src/quality.ts';
@@ -50,12 +51,7 @@ function serve(dir: string): Promise<{ server: Server; url: string }> {
       res.writeHead(404).end('not found');
     }
   });
-  return new Promise((resolve) => {
-    server.listen(0, '127.0.0.1', () => {
-      const addr = server.address();
-      resolve({ server, url: `http://127.0.0.1:${typeof addr === 'object' && addr ? addr.port : 0}/` });
-    });
-  });
+  return listenLocal(server);
 }
 
 let server: Server | undefined;

@@ -866,6 +866,8 @@ window.conformeshPage = {
   lastRemesh,
   lastLoad,
   capabilities: { remesh: engine.canRemesh, flatten: engine.canFlatten },
+  /** Threads of one remesh in the page's worker (above 1 where the page is cross-origin isolated). */
+  remeshThreads: () => engine.remesher.threads(),
   progressLog: progress.log,
   renderAll: () => views.forEach((v) => v.renderNow()),
   loadSample,
