@@ -3,6 +3,7 @@
 // the shapes the glue expects, calls the glue through callRaw, and returns plain JS values.
 import { progressBridge, type ProgressOptions } from './progress.js';
 import { callRaw, requireExport, type RawModule } from './raw.js';
+import { REMESH_OPTION_KEYS, type RemeshSchema } from './schema.js';
 import type { StageName } from './stages.js';
 import { ConformeshError, invalidArgument } from './status.js';
 import type {
@@ -58,6 +59,8 @@ export interface Conformesh {
   remesh(mesh: MeshLike, options?: RemeshOptions, call?: ProgressOptions): RemeshResult;
   /** The C++ status table. */
   statusTable(): StatusRow[];
+  /** The C++ tables of remesh's options (name, kind, default, range, CLI flag, help) and report fields. */
+  remeshSchema(): RemeshSchema;
   /** Bytes allocated in the module's heap, and the WASM memory size (for leak checks). */
   heapStats(): { used: number; heapSize: number };
 }
@@ -191,40 +194,6 @@ const flattenKeys: (keyof FlattenOptions)[] = [
   'requireValidLayout',
 ];
 
-const remeshKeys: (keyof RemeshOptions)[] = [
-  'minAngle',
-  'targetEdgeLength',
-  'targetEdgeLengthRel',
-  'chordTolerance',
-  'chordToleranceRel',
-  'maxError',
-  'maxErrorRel',
-  'gradation',
-  'minEdgeLength',
-  'maxEdgeLength',
-  'featureAngle',
-  'cornerTurn',
-  'minFeatureLength',
-  'minPatchWidth',
-  'maxScaleRatio',
-  'maxCertificateRounds',
-  'optimize',
-  'optimizeIterations',
-  'optimizeTolerance',
-  'threads',
-  'patches',
-  'attributes',
-  'surfacePoints',
-  'boundary',
-  'computeHausdorff',
-  'hausdorffSamples',
-  'maxTriangles',
-  'maxVertices',
-  'maxMemoryBytes',
-  'keepDefectiveOutput',
-  'forceTopologyDefect',
-];
-
 const validateKeys: (keyof ValidateOptions)[] = [
   'maxVertices',
   'maxTriangles',
@@ -346,7 +315,7 @@ export function bindApi(raw: RawModule): Conformesh {
 
     remesh(mesh, options, call) {
       const m = toMesh(mesh, 'api');
-      const o = pickOptions(options, remeshKeys, 'api');
+      const o = pickOptions(options, REMESH_OPTION_KEYS, 'api');
       const sizing = options?.vertexSizing == null ? EMPTY_F64 : toFloat64('vertexSizing', options.vertexSizing, 'api');
       const features =
         options?.featureEdges == null ? EMPTY_U32 : toIndices(options.featureEdges, 'api', 'featureEdges');
@@ -363,6 +332,10 @@ export function bindApi(raw: RawModule): Conformesh {
 
     statusTable() {
       return raw.statusTable();
+    },
+
+    remeshSchema() {
+      return raw.remeshSchema();
     },
 
     heapStats() {

@@ -79,7 +79,7 @@ Status reportOutput(const Surface& surf, const CurveSamples& cs, const MeshBuffe
     // the same value as triangleMinAngle (the same atan2s; degrees are monotone in radians)
     const double a = std::isnan(triMinRad[t]) ? triangleMinAngle(out, t) : triMinRad[t] * 180.0 / kPi;
     rep.minAngleOutsideExempt = std::min(rep.minAngleOutsideExempt, a);
-    if (a < opt.minAngleDeg) ++rep.trianglesBelowBoundOutsideExempt;
+    if (a < opt.minAngle) ++rep.trianglesBelowBoundOutsideExempt;
   }
   const quality::EdgeTopology et = quality::edgeStatsAndTopology(out);
   rep.meanEdgeLength = et.edges.meanLength;

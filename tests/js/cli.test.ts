@@ -82,7 +82,8 @@ describe('package CLI', () => {
 });
 
 // --help on every command: the flags it prints are those its parser accepts. The candidates are
-// every flag-like string of the CLI's source; the parser itself says which a command accepts.
+// every flag-like string of the CLI's source and every flag of the module's option table (remesh's
+// flags come from it); the parser itself says which a command accepts.
 describe('package CLI: --help and --version', () => {
   const commands = [...run(['--help']).stdout.matchAll(/^ {2}conformesh ([a-z0-9]+) /gm)].map((m) => m[1]!);
   const source = readFileSync(join(root, 'bindings', 'src', 'cli.ts'), 'utf8');
@@ -112,7 +113,8 @@ describe('package CLI: --help and --version', () => {
       expect((await inProcess([command, 'some-file', '--json', '--help'])).out).toBe(help.stdout);
       const listed = [...help.stdout.matchAll(/^ {2}(--?[a-z][a-z0-9-]*)/gm)].map((m) => m[1]!).filter((f) => f !== '-h');
       const accepted: string[] = [];
-      for (const flag of candidates) {
+      const tableFlags = (await init()).remeshSchema().options.map((o) => o.flag).filter((f) => f !== '');
+      for (const flag of new Set([...candidates, ...tableFlags])) {
         const r = await inProcess([command, flag]);
         if (!r.out.includes(`unknown option ${flag}`)) accepted.push(flag);
       }
