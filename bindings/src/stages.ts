@@ -21,6 +21,7 @@ export interface StageRow {
 export const STAGES = [
   { name: 'read', key: 'read', label: 'read', weight: 0, timed: false },
   { name: 'validate', key: 'validate', label: 'check input', weight: 1, timed: true },
+  { name: 'precondition', key: 'precondition', label: 'precondition', weight: 0, timed: true },
   { name: 'segment', key: 'segment', label: 'segment', weight: 25, timed: true },
   { name: 'flatten', key: 'flatten', label: 'flatten', weight: 30, timed: true },
   { name: 'curve-mesh', key: 'curveMesh', label: 'curves', weight: 1, timed: true },

@@ -15,18 +15,20 @@ namespace conformesh {
 // call's overall progress (progressInterval) its own progress sweeps. Lift reports no progress of
 // its own: it runs per patch inside refine, whose events cover it. The rounds after the first
 // re-mesh what the certificate asked for and report as certificate; their time still goes to
-// the stage that spends it.
-#define CONFORMESH_REMESH_STAGES(X)                            \
-  X(Validate, validate, "validate", "check input", 1)          \
-  X(Segment, segment, "segment", "segment", 25)                \
-  X(Flatten, flatten, "flatten", "flatten", 30)                \
-  X(CurveMesh, curveMesh, "curve-mesh", "curves", 1)           \
-  X(Refine, refine, "refine", "refine", 20)                    \
-  X(Lift, lift, "lift", "lift to 3D", 0)                       \
-  X(Optimize, optimize, "optimize", "optimize", 8)             \
-  X(Stitch, stitch, "stitch", "stitch", 1)                     \
-  X(Certificate, certificate, "certificate", "angle check", 5) \
-  X(Repair, repair, "repair", "repair", 1)                     \
+// the stage that spends it. Precondition reports no progress either: it runs between the two
+// segmentations of prepare (remesh/prepare.cpp), whose events cover it.
+#define CONFORMESH_REMESH_STAGES(X)                                 \
+  X(Validate, validate, "validate", "check input", 1)               \
+  X(Precondition, precondition, "precondition", "precondition", 0)  \
+  X(Segment, segment, "segment", "segment", 25)                     \
+  X(Flatten, flatten, "flatten", "flatten", 30)                     \
+  X(CurveMesh, curveMesh, "curve-mesh", "curves", 1)                \
+  X(Refine, refine, "refine", "refine", 20)                         \
+  X(Lift, lift, "lift", "lift to 3D", 0)                            \
+  X(Optimize, optimize, "optimize", "optimize", 8)                  \
+  X(Stitch, stitch, "stitch", "stitch", 1)                          \
+  X(Certificate, certificate, "certificate", "angle check", 5)      \
+  X(Repair, repair, "repair", "repair", 1)                          \
   X(Report, report, "report", "report", 8)
 
 // Every stage an error or a progress report can name: reading a file, remesh()'s stages in their

@@ -41,7 +41,7 @@ void checkOptions(const RemeshOptions& opt) {
 }
 
 Surface prepareSurface(ValidatedMesh vm, const MeshBuffers& input, const RemeshOptions& opt, const Progress& progress,
-                       RemeshReport& rep) {
+                       RemeshReport& rep, StageClock& clock) {
   Surface surf;
   surf.vm = std::move(vm);
   const MeshBuffers& in = surf.vm.buffers;
@@ -105,7 +105,9 @@ Surface prepareSurface(ValidatedMesh vm, const MeshBuffers& input, const RemeshO
     std::vector<std::array<uint32_t, 2>> creases = userFeatures;
     for (uint32_t e = 0; e < surf.g.edgeCount(); ++e)
       if (surf.seg.edgeKind[e] == F::EdgeKind::Feature) creases.push_back(surf.g.edgeVerts[e]);
+    const Stage segment = clock.enter(Stage::Precondition);
     surf.pre = precondition(in, creases, po);
+    clock.enter(segment);
     // no patch needs cuts, so nothing was changed: the segmentation of the input stands
     if (surf.pre.splits > 0 || surf.pre.flips > 0) {
       // the surface's curvature from the input as given (features/sizing.h), carried to the

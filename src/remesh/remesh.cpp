@@ -76,7 +76,7 @@ RemeshResult run(const MeshBuffers& input, const RemeshOptions& opt, const Progr
   for (const auto& wn : vm.report.warnings) rep.warnings.push_back(wn.message);
 
   begin(Stage::Segment);
-  Surface surf = prepareSurface(std::move(vm), input, opt, progress, rep);
+  Surface surf = prepareSurface(std::move(vm), input, opt, progress, rep, clock);
 
   begin(Stage::Flatten);
   Meshing m;
