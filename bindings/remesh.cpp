@@ -91,7 +91,7 @@ val defaultOf(size_t v) { return val(double(v)); }
 val defaultOf(bool v) { return val(v); }
 val defaultOf(Boundary v) { return val(std::string(boundaryKey(v))); }
 
-//! The option and report tables (remesh/schema.h), for the package: {options: [{name, kind,
+//! The option and report tables (conformesh/remesh_schema.h), for the package: {options: [{name, kind,
 //! default, lo, hi, flag, value, help}], report: [name, ...], exemptCorner: [name, ...]}.
 val remeshSchema() {
   const RemeshOptions d;
@@ -127,7 +127,7 @@ val remeshSchema() {
 }
 
 //! The pipeline reports a fraction per stage; JS gets one fraction for the whole call: each stage
-//! owns the interval of [0, 1] its weight gives it (core/stages.h progressInterval).
+//! owns the interval of [0, 1] its weight gives it (conformesh/stages.h progressInterval).
 ProgressFn overallProgress(ProgressFn stageProgress) {
   if (!stageProgress) return {};
   return [inner = std::move(stageProgress)](Stage s, double f) {

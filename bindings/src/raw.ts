@@ -31,7 +31,7 @@ export interface RawStatusRow {
 export interface RawModule {
   version(): string;
   statusTable(): RawStatusRow[];
-  /** remesh/schema.h: the option rows and the report's field names. */
+  /** conformesh/remesh_schema.h: the option rows and the report's field names. */
   remeshSchema(): RemeshSchema;
   /** core/stages.h: a row per stage, with its progress interval (lo, hi) in a remesh. */
   stageTable(): { stage: number; name: string; key: string; label: string; weight: number; timed: boolean; lo: number; hi: number }[];

@@ -1,5 +1,5 @@
 // The remesh options and report as seen from TypeScript. The single definition is the C++ table
-// (src/remesh/schema.h), exported by the module as remeshSchema(): the package CLI takes its remesh
+// (include/conformesh/remesh_schema.h), exported by the module as remeshSchema(): the package CLI takes its remesh
 // flags, help, defaults and JSON from it. The key lists here exist so that the TypeScript types can
 // be checked: `satisfies` makes tsc fail when a key of RemeshOptions or RemeshReport is missing
 // here or one here is not in the type, and tests/js/schema.test.ts checks these lists against the

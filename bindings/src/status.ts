@@ -1,5 +1,5 @@
 // The status table as seen from JavaScript. The single definition is the C++ table
-// (src/core/status.h); this copy exists only so the TypeScript union of codes can be a type, and
+// (include/conformesh/status.h); this copy exists only so the TypeScript union of codes can be a type, and
 // tests/js/status.test.ts checks it row by row against the module's statusTable() export.
 import { isStageName, type StageName } from './stages.js';
 import type { RemeshResult } from './types.js';

@@ -10,7 +10,7 @@
 #include <fstream>
 #include <iterator>
 
-#include "remesh/schema.h"
+#include "conformesh/remesh_schema.h"
 
 namespace conformesh::cli {
 

@@ -290,7 +290,7 @@ describe('package CLI: refine2d, flatten, remesh', () => {
     expect(wasm.status).toBe(nat.status);
     const w = JSON.parse(wasm.stdout), n = JSON.parse(nat.stdout);
     expect(Object.keys(w)).toEqual(Object.keys(n));
-    // one seconds key per stage of the table, in its order (src/core/stages.h), in both
+    // one seconds key per stage of the table, in its order (include/conformesh/stages.h), in both
     expect(Object.keys(w.seconds)).toEqual([...REMESH_STAGES.map((s) => s.key), 'total']);
     expect(Object.keys(n.seconds)).toEqual(Object.keys(w.seconds));
     // Both builds compute the same bits (docs/ARCHITECTURE.md, "Determinism"): only the timings differ.

@@ -1,4 +1,4 @@
-// One table of remesh's options and report fields (src/remesh/schema.h): every option and every
+// One table of remesh's options and report fields (include/conformesh/remesh_schema.h): every option and every
 // report field is in the module's export, the TypeScript key lists (which tsc checks against the
 // RemeshOptions and RemeshReport types), both CLIs' --help and --json, and reaches the C++ side.
 import { spawnSync } from 'node:child_process';

@@ -1,6 +1,6 @@
 // CTest: `conformesh COMMAND --help` on every command of src/cli/. The flags are taken from each
 // command's source (every "-x" / "--name" string literal of cmd_NAME.cpp: its flag table and the
-// flags its code reads; for remesh also src/remesh/schema.h, the option table its flags come
+// flags its code reads; for remesh also include/conformesh/remesh_schema.h, the option table its flags come
 // from), never from a list kept here. Checks: --help and -h exit 0 and print the
 // same text; every such flag the parser accepts has a line in the help, and every flag the help
 // lists is accepted; unknown options still fail; --version prints package.json's version.
@@ -23,7 +23,7 @@ for (const file of readdirSync(cliDir).filter((f) => /^cmd_.*\.cpp$/.test(f)).so
   const name = text.match(/CommandRegistrar\s+\w+\(\{\s*"([a-z0-9]+)"/)?.[1];
   check(name !== undefined, `${file}: registers a command`);
   if (!name) continue;
-  const tables = name === 'remesh' ? readFileSync(join(sourceDir, 'src', 'remesh', 'schema.h'), 'utf8') : '';
+  const tables = name === 'remesh' ? readFileSync(join(sourceDir, 'include', 'conformesh', 'remesh_schema.h'), 'utf8') : '';
   const flags = [...new Set([...(text + tables).matchAll(/"(--?[a-z](?:[a-z0-9-]*[a-z0-9])?)"/g)].map((m) => m[1]))];
   commands.push({ name, file, flags });
 }

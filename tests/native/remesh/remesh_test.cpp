@@ -204,15 +204,15 @@ TEST_CASE("remesh: returnPatches gives each patch's planar mesh, consistent with
 }
 
 TEST_CASE("remesh: every boundary condition tried first gives a valid remesh of the cube") {
-  for (auto bc : {conformal::BoundaryCondition::Free, conformal::BoundaryCondition::Corners, conformal::BoundaryCondition::Circle}) {
+  for (auto bc : {BoundaryCondition::Free, BoundaryCondition::Corners, BoundaryCondition::Circle}) {
     RemeshOptions o;
     o.targetEdgeLengthRel = 0.05;
     o.hausdorffSamples = 2000;
     o.boundary = bc;
     INFO("boundary " << int(bc));
-    RemeshResult r = checkRemesh(testshapes::cube(4), o, "cube", true, bc == conformal::BoundaryCondition::Free);
+    RemeshResult r = checkRemesh(testshapes::cube(4), o, "cube", true, bc == BoundaryCondition::Free);
     // flat square faces: the corner-preserving and the free conditions agree, the disk distorts
-    if (bc != conformal::BoundaryCondition::Circle) CHECK(r.report.trianglesBelowBoundOutsideExempt == 0);
+    if (bc != BoundaryCondition::Circle) CHECK(r.report.trianglesBelowBoundOutsideExempt == 0);
   }
 }
 

@@ -1,6 +1,6 @@
 // conformesh — the one table of remesh()'s options and the one table of its report's fields.
 //
-// RemeshOptions and RemeshReport (remesh/remesh.h) are declared from these rows; the embind glue
+// RemeshOptions and RemeshReport (conformesh/remesh.h) are declared from these rows; the embind glue
 // (bindings/remesh.cpp) converts them and exports them (remeshSchema()), the native CLI
 // (src/cli/cmd_remesh.cpp) and the package CLI (bindings/src/cli.ts, from remeshSchema()) take
 // their flags, help and JSON from them, and tests/js/schema.test.ts checks the TypeScript types
@@ -17,12 +17,15 @@
 #include <string>
 #include <vector>
 
-#include "conformal/ricci_flow.h"
 
 namespace conformesh {
 
+//! The boundary condition of a patch's flattening (conformal/ricci_flow.h): a round disk, u = 0 on
+//! the boundary (isometric on developable patches), or corners keeping their 3D angle.
+enum class BoundaryCondition { Circle, Free, Corners };
+
 //! The option kinds: how a binding or a CLI reads a value (a count saturates at SIZE_MAX).
-using Boundary = conformal::BoundaryCondition;
+using Boundary = BoundaryCondition;
 using Count = size_t;
 
 //! The name of a boundary condition in options, flags and JSON.
@@ -137,7 +140,7 @@ inline bool parseBoundary(const std::string& s, Boundary& b) {
 // optimization (moves include curve-sample slides); repairMoves: free vertices moved where the
 // certificate left a triangle below the bound (remesh/repair.h); estimatedTriangles: the output size
 // predicted before refinement (remesh/limits.h); topologyPreserved: false only with
-// keepDefectiveOutput; seconds: per stage (core/stages.h).
+// keepDefectiveOutput; seconds: per stage (conformesh/stages.h).
 #define CONFORMESH_REMESH_REPORT(X)                                                                                     \
   X(size_t, inputTriangles, 0) X(size_t, inputVertices, 0) X(size_t, triangles, 0) X(size_t, vertices, 0)               \
   X(double, minAngle, 0) X(double, maxAngle, 0) X(double, meanMinAngle, 0)                                              \
