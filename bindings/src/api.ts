@@ -5,7 +5,7 @@ import { progressBridge, type ProgressOptions } from './progress.js';
 import { callRaw, requireExport, type RawModule } from './raw.js';
 import { REMESH_OPTION_KEYS, type RemeshSchema } from './schema.js';
 import type { StageName } from './stages.js';
-import { ConformeshError, invalidArgument } from './status.js';
+import { ConformeshError, invalidArgument, type ErrorCode } from './status.js';
 import type {
   FlattenOptions,
   FlattenResult,
@@ -45,7 +45,8 @@ export interface Conformesh {
    * Quality triangulation of a planar straight-line graph (constrained Delaunay refinement):
    * every triangle that is not exempt gets min angle ≥ options.minAngle. `call` gives progress
    * and cancel (an aborted signal fails with 'Cancelled'). Failures: InvalidPslg, IndexOutOfRange,
-   * NonFiniteCoordinate, InvalidArgument, Cancelled. Reaching maxInsertions is `status: 'IterationLimit'`.
+   * NonFiniteCoordinate, InvalidArgument, Cancelled; reaching maxInsertions throws IterationLimit with
+   * the valid mesh made so far as `error.result`.
    */
   refine2d(pslg: PslgLike, options?: Refine2dOptions, call?: ProgressOptions): Refine2dResult;
   /** Parse a Triangle .poly file into a PSLG (ParseError with the line number). */
@@ -287,9 +288,12 @@ export function bindApi(raw: RawModule): Conformesh {
       const fn = requireExport(raw, 'refine2d');
       const bridge = progressBridge(call);
       try {
-        return callRaw(raw, 'refine2d', 'refine', () =>
+        const r = callRaw(raw, 'refine2d', 'refine', () =>
           fn(p.points, p.segments ?? EMPTY_U32, p.segmentMarkers ?? EMPTY_I32, p.holes ?? EMPTY_F64, o, bridge.fn),
         );
+        // every status but Ok throws; the partial mesh goes with the error
+        if (r.status !== 'Ok') throw new ConformeshError(r.status as ErrorCode, 'refine', r.message, r);
+        return r;
       } finally {
         bridge.rethrow();
       }

@@ -9,7 +9,7 @@ import { init } from './index.js';
 import { REMESH_STAGES } from './stages.js';
 import { ConformeshError, StatusCode } from './status.js';
 import type { OptionRow } from './schema.js';
-import type { MeshFormat, RemeshResult } from './types.js';
+import type { MeshFormat, Refine2dResult, RemeshResult } from './types.js';
 
 /** One flag of a command (the native Flag of src/cli/cli_util.h): what parsing and --help read. */
 interface Flag {
@@ -309,7 +309,7 @@ const commands: Record<string, Command> = {
         else if (!out.endsWith('.obj')) throw new ConformeshError('InvalidArgument', 'api', '-o must name a .obj or .off file');
       }
       const pslg = api.readPoly(await readFileBytes(args.positional[0]!));
-      const r = api.refine2d(pslg, {
+      const refine = () => api.refine2d(pslg, {
         minAngle,
         maxArea,
         maxEdge,
@@ -318,6 +318,14 @@ const commands: Record<string, Command> = {
         holesByOrientation: args.flags.has('--holes-by-orientation'),
         offcenters: !args.flags.has('--circumcenters'),
       });
+      let r: Refine2dResult;
+      try {
+        r = refine();
+      } catch (e) {
+        // stopped at --max-insertions: the mesh made so far is written and reported (exit 3)
+        if (!(e instanceof ConformeshError && e.code === 'IterationLimit' && e.result)) throw e;
+        r = e.result as Refine2dResult;
+      }
       if (out !== '') await writeFileBytes(out, planarMeshText(r.vertices, r.triangles, off));
       const nT = r.triangles.length / 3, nV = r.vertices.length / 2;
       if (args.flags.has('--json')) {
@@ -438,7 +446,7 @@ const commands: Record<string, Command> = {
       } catch (e) {
         // a failed result has a mesh only with --keep-defective: it is written, and still an error
         if (!(e instanceof ConformeshError && e.result)) throw e;
-        [r, failure] = [e.result, e];
+        [r, failure] = [e.result as RemeshResult, e];
       }
       const out = args.flags.get('-o') ?? '';
       if (out !== '') {

@@ -183,7 +183,7 @@ export interface Refine2dOptions {
   maxArea?: number;
   /** Largest edge length; 0 (default): none. Not together with maxArea. */
   maxEdge?: number;
-  /** Cap on Steiner vertices; reaching it returns status 'IterationLimit' (the mesh is valid). */
+  /** Cap on Steiner vertices; reaching it throws ConformeshError 'IterationLimit' with the valid mesh so far as `error.result`. */
   maxInsertions?: number;
   /** Constrain the convex hull (Triangle's -c): the domain is the hull minus holes. Default false. */
   convexHull?: boolean;
@@ -221,7 +221,7 @@ export interface Refine2dResult {
   segmentSplits: number;
   rejected: number;
   seconds: number;
-  /** 'Ok', or 'IterationLimit' when maxInsertions stopped the refinement. */
+  /** 'Ok' in a returned result; 'IterationLimit' in the `result` of the error thrown when maxInsertions stopped the refinement. */
   status: StatusCodeName;
   message: string;
 }
