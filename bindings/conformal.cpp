@@ -9,6 +9,7 @@
 #include "binding_util.h"
 #include "conformal/flatten.h"
 #include "conformesh.h"
+#include "core/constants.h"
 
 using namespace emscripten;
 using namespace conformesh;
@@ -70,7 +71,7 @@ val flattenJs(val positions, val triangles, val options, val progress) {
     o.balanceMobius = bindings::boolOption(options, "balanceMobius", o.balanceMobius, Stage::Flatten);
     o.requireValidLayout = bindings::boolOption(options, "requireValidLayout", o.requireValidLayout, Stage::Flatten);
     const double cornerDeg = bindings::numberOption(options, "cornerAngle", 30.0, Stage::Flatten, 1e-9, 179.999999);
-    if (o.boundary == BoundaryCondition::Corners) o.corners = detectCorners(mesh, cornerDeg * M_PI / 180.0);
+    if (o.boundary == BoundaryCondition::Corners) o.corners = detectCorners(mesh, cornerDeg * kPi / 180.0);
     o.pullback = false;  // the pull-back structure is not exposed to JS
     FlatPatch P = flatten(mesh, o, bindings::progressFromJs(progress));
     val out = val::object();

@@ -35,7 +35,7 @@ val statusTable() {
   return rows;
 }
 
-//! The stage table (core/stages.h), in its order: [{stage, name, key, label, weight, timed, lo,
+//! The stage table (conformesh/stages.h), in its order: [{stage, name, key, label, weight, timed, lo,
 //! hi}, ...] with the numeric value, the report name ("curve-mesh"), the report's seconds key
 //! ("curveMesh"), the label for people, the progress weight, whether remesh() times it, and its
 //! interval of a remesh's overall progress.

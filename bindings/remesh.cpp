@@ -16,68 +16,118 @@ using namespace conformesh;
 
 namespace {
 
-val reportToJs(const RemeshReport& r) {
-  val o = val::object();
-  o.set("inputTriangles", double(r.inputTriangles));
-  o.set("inputVertices", double(r.inputVertices));
-  o.set("triangles", double(r.triangles));
-  o.set("vertices", double(r.vertices));
-  o.set("minAngle", r.minAngle);
-  o.set("maxAngle", r.maxAngle);
-  o.set("meanMinAngle", r.meanMinAngle);
-  o.set("pctBelow20", r.pctBelow20);
-  o.set("pctBelow26", r.pctBelow26);
-  o.set("pctBelow30", r.pctBelow30);
-  o.set("pctMinAtLeast40", r.pctMinAtLeast40);
-  o.set("pctMinAtLeast50", r.pctMinAtLeast50);
-  o.set("minAngleOutsideExempt", r.minAngleOutsideExempt);
-  o.set("trianglesBelowBoundOutsideExempt", double(r.trianglesBelowBoundOutsideExempt));
-  val corners = val::array();
-  for (const ExemptCorner& c : r.exemptCorners) {
+// A report field's JS value, by its C++ type (the rows of CONFORMESH_REMESH_REPORT).
+val toJs(double v) { return val(v); }
+val toJs(size_t v) { return val(double(v)); }
+val toJs(uint32_t v) { return val(double(v)); }
+val toJs(int v) { return val(v); }
+val toJs(bool v) { return val(v); }
+val toJs(const std::vector<uint32_t>& v) { return bindings::typedArrayCopy(v); }
+val toJs(const std::vector<std::string>& v) { return bindings::stringArray(v); }
+val toJs(const std::vector<int>& v) {
+  val a = val::array();
+  for (int k : v) a.call<void>("push", k);
+  return a;
+}
+val toJs(const std::vector<ExemptCorner>& corners) {
+  val a = val::array();
+  for (const ExemptCorner& c : corners) {
     val e = val::object();
-    e.set("vertex", double(c.inputVertex));
-    e.set("outputVertex", double(c.outputVertex));
-    e.set("angle", c.angleDeg);
-    e.set("triangles", bindings::typedArrayCopy(c.triangles));
-    corners.call<void>("push", e);
+#define CONFORMESH_X(type, name, init) e.set(#name, toJs(c.name));
+    CONFORMESH_EXEMPT_CORNER(CONFORMESH_X)
+#undef CONFORMESH_X
+    a.call<void>("push", e);
   }
-  o.set("exemptCorners", corners);
-  o.set("hausdorffRel", r.hausdorffRel);
-  o.set("maxDistanceToInputRel", r.maxDistanceToInputRel);
-  o.set("meanEdgeLength", r.meanEdgeLength);
-  o.set("targetEdgeLength", r.targetEdgeLength);
-  o.set("delaunayFraction", r.delaunayFraction);
-  o.set("featureCurves", double(r.featureCurves));
-  o.set("featureCurvesKept", double(r.featureCurvesKept));
-  o.set("sharpEdges", double(r.sharpEdges));
-  o.set("cutEdges", double(r.cutEdges));
-  o.set("droppedFeatureEdges", double(r.droppedFeatureEdges));
-  o.set("seamEdges", double(r.seamEdges));
-  o.set("patches", double(r.patches));
-  o.set("curves", double(r.curves));
-  o.set("curveSamples", double(r.curveSamples));
-  val iters = val::array();
-  for (int k : r.flowIterations) iters.call<void>("push", k);
-  o.set("flowIterations", iters);
-  o.set("patchSplitsForScale", double(r.patchSplitsForScale));
-  o.set("conformingRounds", r.conformingRounds);
-  o.set("certificateRounds", r.certificateRounds);
-  o.set("optimizeMoves", double(r.optimizeMoves));
-  o.set("optimizeFlips", double(r.optimizeFlips));
-  o.set("repairMoves", double(r.repairMoves));
-  o.set("estimatedTriangles", r.estimatedTriangles);
-  o.set("topologyPreserved", r.topologyPreserved);
-  const StageSeconds& t = r.seconds;
+  return a;
+}
+val toJs(const StageSeconds& t) {
   val s = val::object();
   for (Stage st : kRemeshStages) s.set(stageKey(st), *t.of(st));
   s.set("total", t.total);
-  o.set("seconds", s);
-  o.set("warnings", bindings::stringArray(r.warnings));
+  return s;
+}
+
+val reportToJs(const RemeshReport& r) {
+  val o = val::object();
+#define CONFORMESH_X(type, name, init) o.set(#name, toJs(r.name));
+  CONFORMESH_REMESH_REPORT(CONFORMESH_X)
+#undef CONFORMESH_X
   return o;
 }
 
+// An option from the JS options object, by its C++ type (the rows of CONFORMESH_REMESH_OPTIONS):
+// InvalidArgument when it has the wrong type or lies outside [lo, hi].
+void readOption(const val& options, const char* name, double& v, double lo, double hi) {
+  v = bindings::numberOption(options, name, v, Stage::Api, lo, hi);
+}
+void readOption(const val& options, const char* name, int& v, double lo, double hi) {
+  v = int(bindings::integerOption(options, name, v, Stage::Api, lo, hi));
+}
+//! Counts beyond size_t (32 bits here) saturate; 0 passes through for remesh to reject (a limit
+//! of 0 is InvalidArgument, never "unlimited").
+void readOption(const val& options, const char* name, size_t& v, double lo, double hi) {
+  const double d = bindings::integerOption(options, name, double(v), Stage::Api, lo, hi);
+  v = d >= double(SIZE_MAX) ? SIZE_MAX : size_t(d);
+}
+void readOption(const val& options, const char* name, bool& v, double, double) {
+  v = bindings::boolOption(options, name, v, Stage::Api);
+}
+void readOption(const val& options, const char* name, Boundary& v, double, double) {
+  if (options.isUndefined() || options.isNull() || options[name].isUndefined() || options[name].isNull()) return;
+  const val b = options[name];
+  if (!b.isString() || !parseBoundary(b.as<std::string>(), v))
+    fail(Code::InvalidArgument, Stage::Api, "boundary must be 'free', 'corners' or 'circle'");
+}
+
+// The kind and default of an option as the package reads them (remeshSchema).
+const char* kindOf(double) { return "number"; }
+const char* kindOf(int) { return "integer"; }
+const char* kindOf(size_t) { return "count"; }
+const char* kindOf(bool) { return "boolean"; }
+const char* kindOf(Boundary) { return "boundary"; }
+val defaultOf(double v) { return val(v); }
+val defaultOf(int v) { return val(v); }
+val defaultOf(size_t v) { return val(double(v)); }
+val defaultOf(bool v) { return val(v); }
+val defaultOf(Boundary v) { return val(std::string(boundaryKey(v))); }
+
+//! The option and report tables (conformesh/remesh_schema.h), for the package: {options: [{name, kind,
+//! default, lo, hi, flag, value, help}], report: [name, ...], exemptCorner: [name, ...]}.
+val remeshSchema() {
+  const RemeshOptions d;
+  val options = val::array();
+#define CONFORMESH_X(type, name, fallback, lo, hi, flag, value, help) \
+  {                                                                   \
+    val row = val::object();                                          \
+    row.set("name", std::string(#name));                              \
+    row.set("kind", std::string(kindOf(d.name)));                    \
+    row.set("default", defaultOf(d.name));                            \
+    row.set("lo", double(lo));                                        \
+    row.set("hi", double(hi));                                        \
+    row.set("flag", std::string(flag));                               \
+    row.set("value", std::string(value));                             \
+    row.set("help", std::string(help));                               \
+    options.call<void>("push", row);                                  \
+  }
+  CONFORMESH_REMESH_OPTIONS(CONFORMESH_X)
+#undef CONFORMESH_X
+  val report = val::array();
+#define CONFORMESH_X(type, name, init) report.call<void>("push", std::string(#name));
+  CONFORMESH_REMESH_REPORT(CONFORMESH_X)
+#undef CONFORMESH_X
+  val corner = val::array();
+#define CONFORMESH_X(type, name, init) corner.call<void>("push", std::string(#name));
+  CONFORMESH_EXEMPT_CORNER(CONFORMESH_X)
+#undef CONFORMESH_X
+  val out = val::object();
+  out.set("options", options);
+  out.set("report", report);
+  out.set("exemptCorner", corner);
+  return out;
+}
+
 //! The pipeline reports a fraction per stage; JS gets one fraction for the whole call: each stage
-//! owns the interval of [0, 1] its weight gives it (core/stages.h progressInterval).
+//! owns the interval of [0, 1] its weight gives it (conformesh/stages.h progressInterval).
 ProgressFn overallProgress(ProgressFn stageProgress) {
   if (!stageProgress) return {};
   return [inner = std::move(stageProgress)](Stage s, double f) {
@@ -88,8 +138,8 @@ ProgressFn overallProgress(ProgressFn stageProgress) {
 }
 
 //! {mesh, report, patches?, patchOfTriangle?, surfacePoints?} of a result (patches with
-//! returnPatches, surfacePoints when the result has them).
-val resultToJs(const RemeshResult& r, bool returnPatches) {
+//! the patches option, surfacePoints when the result has them).
+val resultToJs(const RemeshResult& r, bool withPatches) {
   val out = val::object();
   out.set("mesh", bindings::meshToJs(r.mesh));
   out.set("report", reportToJs(r.report));
@@ -99,7 +149,7 @@ val resultToJs(const RemeshResult& r, bool returnPatches) {
     points.set("barycentric", bindings::typedArrayCopy(r.cornerBarycentric));
     out.set("surfacePoints", points);
   }
-  if (returnPatches) {
+  if (withPatches) {
     val patches = val::array();
     for (size_t p = 0; p < r.patches.size(); ++p) {
       const RemeshPatch& rp = r.patches[p];
@@ -133,64 +183,20 @@ val remeshJs(val positions, val triangles, val uvs, val attributes, val vertexSi
   val answer = bindings::guarded(Stage::Api, [&] {
     MeshBuffers mesh = bindings::meshFromJs(positions, triangles, uvs, attributes);
     RemeshOptions o;
+#define CONFORMESH_X(type, name, fallback, lo, hi, flag, value, help) readOption(options, #name, o.name, lo, hi);
+    CONFORMESH_REMESH_OPTIONS(CONFORMESH_X)
+#undef CONFORMESH_X
     const Stage st = Stage::Api;
-    o.minAngleDeg = bindings::numberOption(options, "minAngle", o.minAngleDeg, st, 0, 34);
-    o.targetEdgeLength = bindings::numberOption(options, "targetEdgeLength", o.targetEdgeLength, st, 0);
-    o.targetEdgeLengthRel = bindings::numberOption(options, "targetEdgeLengthRel", o.targetEdgeLengthRel, st, 0);
-    o.chordTolerance = bindings::numberOption(options, "chordTolerance", o.chordTolerance, st);
-    o.chordToleranceRel = bindings::numberOption(options, "chordToleranceRel", o.chordToleranceRel, st, 0);
-    o.maxError = bindings::numberOption(options, "maxError", o.maxError, st, 0);
-    o.maxErrorRel = bindings::numberOption(options, "maxErrorRel", o.maxErrorRel, st, 0);
-    o.gradation = bindings::numberOption(options, "gradation", o.gradation, st, 1);
-    o.minEdgeLength = bindings::numberOption(options, "minEdgeLength", o.minEdgeLength, st);
-    o.maxEdgeLength = bindings::numberOption(options, "maxEdgeLength", o.maxEdgeLength, st);
-    o.featureAngleDeg = bindings::numberOption(options, "featureAngle", o.featureAngleDeg, st, 0, 180);
-    o.cornerTurnDeg = bindings::numberOption(options, "cornerTurn", o.cornerTurnDeg, st, 0, 180);
-    o.minFeatureLength = bindings::numberOption(options, "minFeatureLength", o.minFeatureLength, st);
-    o.minPatchWidth = bindings::numberOption(options, "minPatchWidth", o.minPatchWidth, st);
-    o.maxScaleRatio = bindings::numberOption(options, "maxScaleRatio", o.maxScaleRatio, st, 1);
-    o.maxCertificateRounds =
-        int(bindings::integerOption(options, "maxCertificateRounds", o.maxCertificateRounds, st, 0, 100));
-    o.computeHausdorff = bindings::boolOption(options, "computeHausdorff", o.computeHausdorff, st);
-    o.optimize = bindings::boolOption(options, "optimize", o.optimize, st);
-    o.returnPatches = bindings::boolOption(options, "patches", o.returnPatches, st);
-    o.carryAttributes = bindings::boolOption(options, "attributes", o.carryAttributes, st);
-    o.returnSurfacePoints = bindings::boolOption(options, "surfacePoints", o.returnSurfacePoints, st);
-    o.keepDefectiveOutput = bindings::boolOption(options, "keepDefectiveOutput", o.keepDefectiveOutput, st);
-    o.forceTopologyDefect = bindings::boolOption(options, "forceTopologyDefect", o.forceTopologyDefect, st);
-    if (!options.isUndefined() && !options.isNull() && !options["boundary"].isUndefined() && !options["boundary"].isNull()) {
-      val b = options["boundary"];
-      const std::string s = b.isString() ? b.as<std::string>() : std::string();
-      if (s == "free") o.boundary = BoundaryCondition::Free;
-      else if (s == "corners") o.boundary = BoundaryCondition::Corners;
-      else if (s == "circle") o.boundary = BoundaryCondition::Circle;
-      else fail(Code::InvalidArgument, st, "boundary must be 'free', 'corners' or 'circle'");
-    }
-    o.optimizeIterations = int(bindings::integerOption(options, "optimizeIterations", o.optimizeIterations, st, 0, 1000));
-    o.optimizeTolerance = bindings::numberOption(options, "optimizeTolerance", o.optimizeTolerance, st, 0);
-    // the single-threaded module accepts it and runs on one thread; the threaded one (-pthread) uses it
-    o.threads = int(bindings::integerOption(options, "threads", o.threads, st, 0, 1024));
-    o.hausdorffSamples =
-        size_t(bindings::integerOption(options, "hausdorffSamples", double(o.hausdorffSamples), st, 1, 1e8));
-    // limits: 0 passes through and is rejected by remesh (InvalidArgument), never "unlimited";
-    // values beyond size_t (32 bits here) saturate
-    auto count = [&](const char* name, size_t fallback) {
-      const double v = bindings::numberOption(options, name, double(fallback), st, 0, 1e18);
-      return v >= double(SIZE_MAX) ? SIZE_MAX : size_t(v);
-    };
-    o.maxTriangles = count("maxTriangles", o.maxTriangles);
-    o.maxVertices = count("maxVertices", o.maxVertices);
-    o.maxMemoryBytes = bindings::numberOption(options, "maxMemoryBytes", o.maxMemoryBytes, st, 0);
     o.vertexSizing = bindings::vectorFromJs<double>(vertexSizing);
     const std::vector<uint32_t> fe = bindings::vectorFromJs<uint32_t>(featureEdges);
     if (fe.size() % 2 != 0) fail(Code::InvalidArgument, st, "featureEdges must hold 2 vertex indices per edge");
     for (size_t i = 0; i + 1 < fe.size(); i += 2) o.featureEdges.push_back({fe[i], fe[i + 1]});
     RemeshResult r = remesh(mesh, o, overallProgress(bindings::progressFromJs(progress)));
     if (!r.status.ok()) {
-      if (!r.mesh.triangles.empty()) defective = resultToJs(r, o.returnPatches);
+      if (!r.mesh.triangles.empty()) defective = resultToJs(r, o.patches);
       throw Error(r.status.code, r.status.stage, r.status.message);
     }
-    return resultToJs(r, o.returnPatches);
+    return resultToJs(r, o.patches);
   });
   if (!defective.isUndefined()) answer.set("result", defective);
   return answer;
@@ -198,4 +204,7 @@ val remeshJs(val positions, val triangles, val uvs, val attributes, val vertexSi
 
 }  // namespace
 
-EMSCRIPTEN_BINDINGS(conformesh_remesh) { function("remesh", &remeshJs); }
+EMSCRIPTEN_BINDINGS(conformesh_remesh) {
+  function("remesh", &remeshJs);
+  function("remeshSchema", &remeshSchema);
+}

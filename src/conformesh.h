@@ -1,12 +1,8 @@
-// conformesh — the one public C++ header.
-//
-// Surface remeshing by discrete conformal maps: split along features, flatten each patch by
-// discrete Ricci flow with intrinsic Delaunay flips, refine in the plane (Delaunay refinement),
-// lift back to the input surface and stitch. See docs/ARCHITECTURE.md.
+// conformesh — every header of the library, the internal ones too, for the bindings, the CLI and
+// the tests. The public API is include/conformesh/conformesh.h.
 #pragma once
 
-#define CONFORMESH_VERSION "0.1.0"
-
+#include "conformesh/conformesh.h"
 #include "conformal/flatten.h"
 #include "core/mesh_buffers.h"
 #include "core/status.h"

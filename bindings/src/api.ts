@@ -3,8 +3,9 @@
 // the shapes the glue expects, calls the glue through callRaw, and returns plain JS values.
 import { progressBridge, type ProgressOptions } from './progress.js';
 import { callRaw, requireExport, type RawModule } from './raw.js';
+import { REMESH_OPTION_KEYS, type RemeshSchema } from './schema.js';
 import type { StageName } from './stages.js';
-import { ConformeshError, invalidArgument } from './status.js';
+import { ConformeshError, invalidArgument, type ErrorCode } from './status.js';
 import type {
   FlattenOptions,
   FlattenResult,
@@ -46,7 +47,8 @@ export interface Conformesh {
    * Quality triangulation of a planar straight-line graph (constrained Delaunay refinement):
    * every triangle that is not exempt gets min angle ≥ options.minAngle. `call` gives progress
    * and cancel (an aborted signal fails with 'Cancelled'). Failures: InvalidPslg, IndexOutOfRange,
-   * NonFiniteCoordinate, InvalidArgument, Cancelled. Reaching maxInsertions is `status: 'IterationLimit'`.
+   * NonFiniteCoordinate, InvalidArgument, Cancelled; reaching maxInsertions throws IterationLimit with
+   * the valid mesh made so far as `error.result`.
    */
   refine2d(pslg: PslgLike, options?: Refine2dOptions, call?: ProgressOptions): Refine2dResult;
   /** Parse a Triangle .poly file into a PSLG (ParseError with the line number). */
@@ -60,6 +62,8 @@ export interface Conformesh {
   remesh(mesh: MeshLike, options?: RemeshOptions, call?: ProgressOptions): RemeshResult;
   /** The C++ status table. */
   statusTable(): StatusRow[];
+  /** The C++ tables of remesh's options (name, kind, default, range, CLI flag, help) and report fields. */
+  remeshSchema(): RemeshSchema;
   /** Bytes allocated in the module's heap, and the WASM memory size (for leak checks). */
   heapStats(): { used: number; heapSize: number };
 }
@@ -193,40 +197,6 @@ const flattenKeys: (keyof FlattenOptions)[] = [
   'requireValidLayout',
 ];
 
-const remeshKeys: (keyof RemeshOptions)[] = [
-  'minAngle',
-  'targetEdgeLength',
-  'targetEdgeLengthRel',
-  'chordTolerance',
-  'chordToleranceRel',
-  'maxError',
-  'maxErrorRel',
-  'gradation',
-  'minEdgeLength',
-  'maxEdgeLength',
-  'featureAngle',
-  'cornerTurn',
-  'minFeatureLength',
-  'minPatchWidth',
-  'maxScaleRatio',
-  'maxCertificateRounds',
-  'optimize',
-  'optimizeIterations',
-  'optimizeTolerance',
-  'threads',
-  'patches',
-  'attributes',
-  'surfacePoints',
-  'boundary',
-  'computeHausdorff',
-  'hausdorffSamples',
-  'maxTriangles',
-  'maxVertices',
-  'maxMemoryBytes',
-  'keepDefectiveOutput',
-  'forceTopologyDefect',
-];
-
 const validateKeys: (keyof ValidateOptions)[] = [
   'maxVertices',
   'maxTriangles',
@@ -321,9 +291,12 @@ export function bindApi(raw: RawModule): Conformesh {
       const fn = requireExport(raw, 'refine2d');
       const bridge = progressBridge(call);
       try {
-        return callRaw(raw, 'refine2d', 'refine', () =>
+        const r = callRaw(raw, 'refine2d', 'refine', () =>
           fn(p.points, p.segments ?? EMPTY_U32, p.segmentMarkers ?? EMPTY_I32, p.holes ?? EMPTY_F64, o, bridge.fn),
         );
+        // every status but Ok throws; the partial mesh goes with the error
+        if (r.status !== 'Ok') throw new ConformeshError(r.status as ErrorCode, 'refine', r.message, r);
+        return r;
       } finally {
         bridge.rethrow();
       }
@@ -349,7 +322,7 @@ export function bindApi(raw: RawModule): Conformesh {
 
     remesh(mesh, options, call) {
       const m = toMesh(mesh, 'api');
-      const o = pickOptions(options, remeshKeys, 'api');
+      const o = pickOptions(options, REMESH_OPTION_KEYS, 'api');
       const sizing = options?.vertexSizing == null ? EMPTY_F64 : toFloat64('vertexSizing', options.vertexSizing, 'api');
       const features =
         options?.featureEdges == null ? EMPTY_U32 : toIndices(options.featureEdges, 'api', 'featureEdges');
@@ -366,6 +339,10 @@ export function bindApi(raw: RawModule): Conformesh {
 
     statusTable() {
       return raw.statusTable();
+    },
+
+    remeshSchema() {
+      return raw.remeshSchema();
     },
 
     heapStats() {

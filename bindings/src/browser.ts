@@ -46,6 +46,7 @@ export {
   type StageRow,
   type StageSeconds,
 } from './stages.js';
+export { EXEMPT_CORNER_KEYS, REMESH_OPTION_KEYS, REMESH_REPORT_KEYS, type OptionKind, type OptionRow, type RemeshSchema } from './schema.js';
 export { createRemesher, type Remesher, type RemesherOptions, type CallOptions, type ProgressEvent } from './remesher.js';
 
 let api: Promise<Conformesh> | undefined;

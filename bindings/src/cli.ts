@@ -8,7 +8,8 @@ import type { Conformesh } from './api.js';
 import { init } from './index.js';
 import { REMESH_STAGES } from './stages.js';
 import { ConformeshError, StatusCode } from './status.js';
-import type { MeshFormat, RemeshResult } from './types.js';
+import type { OptionRow } from './schema.js';
+import type { MeshFormat, Refine2dResult, RemeshResult } from './types.js';
 
 /** One flag of a command (the native Flag of src/cli/cli_util.h): what parsing and --help read. */
 interface Flag {
@@ -30,7 +31,8 @@ interface Args {
 interface Command {
   usage: string;
   summary: string;
-  flags: Flag[];
+  /** The flags, or how to make them from the module (remesh: from its option table). */
+  flags: Flag[] | ((api: Conformesh) => Flag[]);
   run(args: Args, api: Conformesh): Promise<number>;
 }
 
@@ -66,7 +68,7 @@ function asksForHelp(argv: string[], table: Flag[]): boolean {
 }
 
 /** A command's --help, laid out as helpText in src/cli/cli_util.cpp: flags in a column of 30, text wrapped at 100. */
-function helpText(command: Command): string {
+function helpText(command: Command, flags: Flag[]): string {
   const indent = 30, width = 100;
   let s = `usage: conformesh ${command.usage}\n\n${command.summary}\n\noptions:\n`;
   const line = (left: string, text: string) => {
@@ -84,7 +86,7 @@ function helpText(command: Command): string {
     }
     s += `${l}\n`;
   };
-  for (const f of command.flags) {
+  for (const f of flags) {
     const fallback = f.default === undefined ? '' : ` (default ${typeof f.default === 'number' ? jsonNumber(f.default) : f.default})`;
     line(f.value ? `${f.name} ${f.value}` : f.name, f.help + fallback);
   }
@@ -189,6 +191,37 @@ function integerFlag(args: Args, name: string): number {
   return d;
 }
 
+/** The value of an option's flag, by its kind, as the native CLI reads it (readFlag in src/cli/cmd_remesh.cpp). */
+function optionFlag(args: Args, o: OptionRow): unknown {
+  switch (o.kind) {
+    case 'boolean':
+      return args.flags.has(o.flag) ? !o.flag.startsWith('--no-') : o.default;
+    case 'integer':
+      return integerFlag(args, o.flag);
+    case 'count': {
+      // values below 1 are passed as 0 (InvalidArgument, never "unlimited")
+      const v = numberFlag(args, o.flag);
+      return v >= 1 ? Math.floor(Math.min(v, 1e18)) : 0;
+    }
+    case 'boundary':
+      return boundaryFlag(args);
+    default:
+      return numberFlag(args, o.flag);
+  }
+}
+
+/** A value as JSON the way the native CLI writes it: numbers by jsonNumber, objects in their key order. */
+function jsonValue(v: unknown): string {
+  if (typeof v === 'number') return jsonNumber(v);
+  if (typeof v === 'boolean') return v ? 'true' : 'false';
+  if (typeof v === 'string') return jsonString(v);
+  if (Array.isArray(v) || ArrayBuffer.isView(v)) return `[${Array.from(v as ArrayLike<unknown>, jsonValue).join(',')}]`;
+  if (typeof v === 'object' && v !== null) {
+    return `{${Object.entries(v).map(([k, x]) => `${jsonString(k)}:${jsonValue(x)}`).join(',')}}`;
+  }
+  return 'null';
+}
+
 /** writeFileBytes of the native CLI: same IoError message. */
 async function writeFileBytes(path: string, bytes: Uint8Array | string): Promise<void> {
   try {
@@ -276,7 +309,7 @@ const commands: Record<string, Command> = {
         else if (!out.endsWith('.obj')) throw new ConformeshError('InvalidArgument', 'api', '-o must name a .obj or .off file');
       }
       const pslg = api.readPoly(await readFileBytes(args.positional[0]!));
-      const r = api.refine2d(pslg, {
+      const refine = () => api.refine2d(pslg, {
         minAngle,
         maxArea,
         maxEdge,
@@ -285,6 +318,14 @@ const commands: Record<string, Command> = {
         holesByOrientation: args.flags.has('--holes-by-orientation'),
         offcenters: !args.flags.has('--circumcenters'),
       });
+      let r: Refine2dResult;
+      try {
+        r = refine();
+      } catch (e) {
+        // stopped at --max-insertions: the mesh made so far is written and reported (exit 3)
+        if (!(e instanceof ConformeshError && e.code === 'IterationLimit' && e.result)) throw e;
+        r = e.result as Refine2dResult;
+      }
       if (out !== '') await writeFileBytes(out, planarMeshText(r.vertices, r.triangles, off));
       const nT = r.triangles.length / 3, nV = r.vertices.length / 2;
       if (args.flags.has('--json')) {
@@ -380,69 +421,13 @@ const commands: Record<string, Command> = {
   remesh: {
     usage: remeshUsage,
     summary: 'remesh a surface: conformal flattening per patch, planar Delaunay refinement, lift',
-    flags: [
+    flags: (api) => [
       { name: '-o', value: 'OUT', help: 'write the output mesh; .obj, .off, .stl or .ply picks the format; without it no file is written' },
-      { name: '--min-angle', value: 'DEG', help: 'angle bound of every output triangle outside exempt input corners, degrees in [0, 34]', default: 30 },
-      { name: '--edge-length', value: 'L', help: "target edge length in flat regions, in the input's units; 0: --edge-length-rel", default: 0 },
-      { name: '--edge-length-rel', value: 'R', help: 'target edge length as a fraction of the bounding-box diagonal', default: 0.01 },
-      { name: '--feature-angle', value: 'DEG', help: 'edges whose dihedral angle exceeds this (degrees) may be features', default: 40 },
-      {
-        name: '--min-feature-length',
-        value: 'L',
-        help: "shortest chain of sharp edges kept as a crease, in the input's units; < 0: twice the target edge length; 0: every sharp edge",
-        default: -1,
-      },
-      {
-        name: '--min-patch-width',
-        value: 'W',
-        help: "merge patches narrower than this into a neighbour, in the input's units; < 0: a twentieth of the target edge length; 0: keep every patch",
-        default: 0,
-      },
-      {
-        name: '--chord-tol',
-        value: 'T',
-        help: "chord deviation bound of the curvature sizing, in the input's units; < 0: 0.001 times the diagonal; 0: no curvature sizing",
-        default: -1,
-      },
-      {
-        name: '--max-error',
-        value: 'D',
-        help:
-          "error-driven remeshing: the largest Hausdorff distance to the input, in the input's units; sizes grow as large " +
-          'as it allows, every sharp edge is a crease (the edge length then only scales the cuts and the smallest edge); 0: off',
-        default: 0,
-      },
-      { name: '--max-error-rel', value: 'R', help: '--max-error as a fraction of the bounding-box diagonal; 0: off', default: 0 },
-      { name: '--boundary', value: 'free|corners|circle', help: "the boundary condition each patch's flattening tries first", default: 'free' },
-      { name: '--max-triangles', value: 'N', help: 'fail with TooLarge when the output would have more triangles', default: 32 * 2 ** 20 },
-      { name: '--max-vertices', value: 'N', help: 'fail with TooLarge when the output would have more vertices', default: 16 * 2 ** 20 },
-      { name: '--optimize-iterations', value: 'N', help: 'passes of the optimization (a cap), an integer >= 0', default: 2 },
-      {
-        name: '--optimize-tolerance',
-        value: 'T',
-        help: 'stop optimizing when a pass gains less than this fraction of the mean min angle',
-        default: 1e-3,
-      },
-      {
-        name: '--threads',
-        value: 'N',
-        help:
-          "threads over the patches and the report's distances, an integer >= 0; 0: the hardware's concurrency; " +
-          'the output is the same for every count',
-        default: 0,
-      },
-      { name: '--no-optimize', value: '', help: 'skip the optimization (vertex moves and flips judged in 3D)' },
-      {
-        name: '--no-attributes',
-        value: '',
-        help:
-          "drop the input's uvs, normals, colours and other vertex data instead of interpolating them onto the output " +
-          '(and keeping their seams as curves)',
-      },
-      { name: '--no-hausdorff', value: '', help: 'leave the Hausdorff distance out of the report (it costs time on big meshes)' },
+      ...api
+        .remeshSchema()
+        .options.filter((o) => o.flag !== '')
+        .map((o): Flag => ({ name: o.flag, value: o.value, help: o.help, ...(o.kind === 'boolean' ? {} : { default: o.default as number | string }) })),
       jsonFlag,
-      { name: '--keep-defective', value: '', help: "write the output even when its topology is not the input's (still exit 1)" },
-      { name: '--force-topology-defect', value: '', help: 'break the output on purpose, to test the topology check' },
     ],
     async run(args, api) {
       if (args.positional.length !== 1) throw new ConformeshError('InvalidArgument', 'api', 'remesh needs exactly one input file');
@@ -450,29 +435,9 @@ const commands: Record<string, Command> = {
         throw new ConformeshError('InvalidArgument', 'api', 'give --edge-length or --edge-length-rel, not both');
       if (args.flags.has('--max-error') && args.flags.has('--max-error-rel'))
         throw new ConformeshError('InvalidArgument', 'api', 'give --max-error or --max-error-rel, not both');
-      const options = {
-        minAngle: numberFlag(args, '--min-angle'),
-        targetEdgeLength: numberFlag(args, '--edge-length'),
-        targetEdgeLengthRel: numberFlag(args, '--edge-length-rel'),
-        featureAngle: numberFlag(args, '--feature-angle'),
-        minFeatureLength: numberFlag(args, '--min-feature-length'),
-        minPatchWidth: numberFlag(args, '--min-patch-width'),
-        chordTolerance: numberFlag(args, '--chord-tol'),
-        maxError: numberFlag(args, '--max-error'),
-        maxErrorRel: numberFlag(args, '--max-error-rel'),
-        computeHausdorff: !args.flags.has('--no-hausdorff'),
-        optimize: !args.flags.has('--no-optimize'),
-        attributes: !args.flags.has('--no-attributes'),
-        keepDefectiveOutput: args.flags.has('--keep-defective'),
-        forceTopologyDefect: args.flags.has('--force-topology-defect'),
-        optimizeIterations: integerFlag(args, '--optimize-iterations'),
-        optimizeTolerance: numberFlag(args, '--optimize-tolerance'),
-        threads: integerFlag(args, '--threads'),
-        boundary: boundaryFlag(args),
-        // as the native CLI: values below 1 are passed as 0 (InvalidArgument, never "unlimited")
-        maxTriangles: Math.max(0, Math.min(numberFlag(args, '--max-triangles'), 1e18)),
-        maxVertices: Math.max(0, Math.min(numberFlag(args, '--max-vertices'), 1e18)),
-      };
+      const schema = api.remeshSchema();
+      const options: Record<string, unknown> = {};
+      for (const o of schema.options) if (o.flag !== '') options[o.name] = optionFlag(args, o);
       const path = args.positional[0]!;
       const mesh = api.readMesh(await readFileBytes(path), { fileName: path });
       let r: RemeshResult, failure: ConformeshError | undefined;
@@ -481,7 +446,7 @@ const commands: Record<string, Command> = {
       } catch (e) {
         // a failed result has a mesh only with --keep-defective: it is written, and still an error
         if (!(e instanceof ConformeshError && e.result)) throw e;
-        [r, failure] = [e.result, e];
+        [r, failure] = [e.result as RemeshResult, e];
       }
       const out = args.flags.get('-o') ?? '';
       if (out !== '') {
@@ -495,45 +460,7 @@ const commands: Record<string, Command> = {
       if (failure) throw failure;
       const R = r.report;
       if (args.flags.has('--json')) {
-        const num = (k: string, v: number) => `${jsonString(k)}:${jsonNumber(v)}`;
-        const corners = R.exemptCorners.map(
-          (c) => `{"vertex":${c.vertex},"angle":${jsonNumber(c.angle)},"triangles":[${Array.from(c.triangles).join(',')}]}`,
-        );
-        const t = R.seconds;
-        const fields = [
-          num('triangles', R.triangles),
-          num('vertices', R.vertices),
-          num('minAngle', R.minAngle),
-          num('maxAngle', R.maxAngle),
-          num('meanMinAngle', R.meanMinAngle),
-          num('pctBelow20', R.pctBelow20),
-          num('pctBelow26', R.pctBelow26),
-          num('pctBelow30', R.pctBelow30),
-          num('pctMinAtLeast40', R.pctMinAtLeast40),
-          num('pctMinAtLeast50', R.pctMinAtLeast50),
-          num('minAngleOutsideExempt', R.minAngleOutsideExempt),
-          num('trianglesBelowBoundOutsideExempt', R.trianglesBelowBoundOutsideExempt),
-          `"exemptCorners":[${corners.join(',')}]`,
-          num('hausdorffRel', R.hausdorffRel),
-          num('maxDistanceToInputRel', R.maxDistanceToInputRel),
-          num('meanEdgeLength', R.meanEdgeLength),
-          num('targetEdgeLength', R.targetEdgeLength),
-          num('delaunayFraction', R.delaunayFraction),
-          num('featureCurves', R.featureCurves),
-          num('featureCurvesKept', R.featureCurvesKept),
-          num('seamEdges', R.seamEdges),
-          num('patches', R.patches),
-          `"flowIterations":[${R.flowIterations.join(',')}]`,
-          num('conformingRounds', R.conformingRounds),
-          num('certificateRounds', R.certificateRounds),
-          num('estimatedTriangles', R.estimatedTriangles),
-          num('optimizeMoves', R.optimizeMoves),
-          num('optimizeFlips', R.optimizeFlips),
-          num('repairMoves', R.repairMoves),
-          `"warnings":${JSON.stringify(R.warnings)}`,
-          `"topologyPreserved":${R.topologyPreserved ? 'true' : 'false'}`,
-          `"seconds":{${[...REMESH_STAGES.map((s) => s.key), 'total' as const].map((k) => num(k, t[k])).join(',')}}`,
-        ];
+        const fields = schema.report.map((k) => `${jsonString(k)}:${jsonValue(R[k as keyof typeof R])}`);
         process.stdout.write(`{${fields.join(',')}}\n`);
       } else {
         const t = R.seconds;
@@ -649,14 +576,17 @@ export async function main(argv: string[]): Promise<number> {
     process.stderr.write(`conformesh: unknown command '${name}'\n\n${usage()}`);
     return 2;
   }
-  if (asksForHelp(argv.slice(1), command.flags)) {
-    process.stdout.write(helpText(command));
-    return 0;
-  }
   const json = argv.includes('--json');
   try {
-    const args = parseArgs(argv.slice(1), command.flags);
-    return await command.run(args, await init());
+    // the module is loaded before parsing only for a command whose flags come from it
+    let api: Conformesh | undefined;
+    const flags = typeof command.flags === 'function' ? command.flags((api = await init())) : command.flags;
+    if (asksForHelp(argv.slice(1), flags)) {
+      process.stdout.write(helpText(command, flags));
+      return 0;
+    }
+    const args = parseArgs(argv.slice(1), flags);
+    return await command.run(args, api ?? (await init()));
   } catch (e) {
     const err =
       e instanceof ConformeshError ? e : new ConformeshError('InternalError', 'api', e instanceof Error ? e.message : String(e));

@@ -1,5 +1,6 @@
 // The raw Emscripten module (dist/conformesh.mjs + .wasm) as the facade sees it, and the one
 // place where its results become values or ConformeshErrors. Internal: not part of the public API.
+import type { RemeshSchema } from './schema.js';
 import { isStageName, type StageName } from './stages.js';
 import { ConformeshError, isErrorCode } from './status.js';
 import type { FlattenResult, MeshAttribute, MeshInfo, Pslg, Refine2dResult, RemeshResult, ValidateResult } from './types.js';
@@ -30,6 +31,8 @@ export interface RawStatusRow {
 export interface RawModule {
   version(): string;
   statusTable(): RawStatusRow[];
+  /** conformesh/remesh_schema.h: the option rows and the report's field names. */
+  remeshSchema(): RemeshSchema;
   /** core/stages.h: a row per stage, with its progress interval (lo, hi) in a remesh. */
   stageTable(): { stage: number; name: string; key: string; label: string; weight: number; timed: boolean; lo: number; hi: number }[];
   heapStats(): { used: number; heapSize: number };

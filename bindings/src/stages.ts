@@ -1,5 +1,5 @@
 // The pipeline stages as seen from JavaScript, in the order remesh() runs them. The single
-// definition is the C++ table (src/core/stages.h); this copy exists so that stage names and the
+// definition is the C++ table (include/conformesh/stages.h); this copy exists so that stage names and the
 // report's seconds can be types, and tests/js/stages.test.ts checks it row by row against the
 // module's stageTable() export. Stage, the report's seconds, the CLI's report and the demo page's
 // bars and time rows come from it.
@@ -21,6 +21,7 @@ export interface StageRow {
 export const STAGES = [
   { name: 'read', key: 'read', label: 'read', weight: 0, timed: false },
   { name: 'validate', key: 'validate', label: 'check input', weight: 1, timed: true },
+  { name: 'precondition', key: 'precondition', label: 'precondition', weight: 0, timed: true },
   { name: 'segment', key: 'segment', label: 'segment', weight: 25, timed: true },
   { name: 'flatten', key: 'flatten', label: 'flatten', weight: 30, timed: true },
   { name: 'curve-mesh', key: 'curveMesh', label: 'curves', weight: 1, timed: true },

@@ -1,8 +1,8 @@
 // The status table as seen from JavaScript. The single definition is the C++ table
-// (src/core/status.h); this copy exists only so the TypeScript union of codes can be a type, and
+// (include/conformesh/status.h); this copy exists only so the TypeScript union of codes can be a type, and
 // tests/js/status.test.ts checks it row by row against the module's statusTable() export.
 import { isStageName, type StageName } from './stages.js';
-import type { RemeshResult } from './types.js';
+import type { Refine2dResult, RemeshResult } from './types.js';
 
 /** Every status code by name, with its numeric value (same values as C++ `conformesh::Code`). */
 export const StatusCode = {
@@ -38,22 +38,24 @@ export interface ConformeshErrorData {
   value: number;
   stage: StageName;
   message: string;
-  result?: RemeshResult;
+  result?: RemeshResult | Refine2dResult;
 }
 
 /**
- * The one error type of the package. `code` is the status-table name (`'ParseError'`, ...),
- * `value` its number, `stage` the pipeline stage it arose in; `message` says what and where.
- * `result`: the defective output of a remesh that failed its topology check, when the call asked
- * for it (RemeshOptions.keepDefectiveOutput); otherwise undefined.
+ * The one error type of the package: every status but Ok throws it. `code` is the status-table
+ * name (`'ParseError'`, ...), `value` its number, `stage` the pipeline stage it arose in; `message`
+ * says what and where. `result`: the partial result, when there is one: the defective output of a
+ * remesh that failed its topology check, when the call asked for it
+ * (RemeshOptions.keepDefectiveOutput), or the valid mesh of a refine2d stopped at maxInsertions
+ * (IterationLimit); otherwise undefined.
  */
 export class ConformeshError extends Error {
   readonly code: ErrorCode;
   readonly value: number;
   readonly stage: StageName;
-  readonly result?: RemeshResult;
+  readonly result?: RemeshResult | Refine2dResult;
 
-  constructor(code: ErrorCode, stage: StageName, message: string, result?: RemeshResult) {
+  constructor(code: ErrorCode, stage: StageName, message: string, result?: RemeshResult | Refine2dResult) {
     super(message);
     this.name = 'ConformeshError';
     this.code = code;

@@ -183,7 +183,7 @@ export interface Refine2dOptions {
   maxArea?: number;
   /** Largest edge length; 0 (default): none. Not together with maxArea. */
   maxEdge?: number;
-  /** Cap on Steiner vertices; reaching it returns status 'IterationLimit' (the mesh is valid). */
+  /** Cap on Steiner vertices; reaching it throws ConformeshError 'IterationLimit' with the valid mesh so far as `error.result`. */
   maxInsertions?: number;
   /** Constrain the convex hull (Triangle's -c): the domain is the hull minus holes. Default false. */
   convexHull?: boolean;
@@ -221,7 +221,7 @@ export interface Refine2dResult {
   segmentSplits: number;
   rejected: number;
   seconds: number;
-  /** 'Ok', or 'IterationLimit' when maxInsertions stopped the refinement. */
+  /** 'Ok' in a returned result; 'IterationLimit' in the `result` of the error thrown when maxInsertions stopped the refinement. */
   status: StatusCodeName;
   message: string;
 }
@@ -294,7 +294,7 @@ export interface FlattenResult {
 export interface RemeshOptions {
   /** Angle bound for every output triangle (3D), except at exempt corners; [0, 34], default 30. */
   minAngle?: number;
-  /** Target edge length (absolute); 0 (default): targetEdgeLengthRel × bounding-box diagonal. */
+  /** Target edge length (absolute); < 0 (default -1): targetEdgeLengthRel × bounding-box diagonal. */
   targetEdgeLength?: number;
   /** Default 0.01. */
   targetEdgeLengthRel?: number;
@@ -304,7 +304,7 @@ export interface RemeshOptions {
   chordToleranceRel?: number;
   /**
    * Error-driven remeshing: the largest two-sided Hausdorff distance to the input (absolute when
-   * > 0, else maxErrorRel × diagonal when > 0; both 0, the default: off). Sizes grow as large as it
+   * > 0; < 0, the default -1: maxErrorRel × diagonal, off when that is 0; 0: off). Sizes grow as large as it
    * allows and every sharp edge is a crease (minFeatureLength defaults to 0); the target edge
    * length then only scales the cuts and the smallest edge.
    * The report's hausdorffRel is within it, else the call fails with IterationLimit.
@@ -316,6 +316,7 @@ export interface RemeshOptions {
   gradation?: number;
   /** Edge length clamps (absolute; < 0: target/10 and target). */
   minEdgeLength?: number;
+  /** See minEdgeLength. */
   maxEdgeLength?: number;
   /** Dihedral angle above which edges are features; default 40. */
   featureAngle?: number;

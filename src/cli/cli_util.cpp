@@ -10,6 +10,8 @@
 #include <fstream>
 #include <iterator>
 
+#include "conformesh/remesh_schema.h"
+
 namespace conformesh::cli {
 
 bool Args::has(const std::string& name) const {
@@ -168,20 +170,12 @@ int reportError(const Status& s, bool json) {
 }
 
 conformal::BoundaryCondition boundaryFlag(const Args& args, const char* fallback) {
-  const std::string b = args.get("--boundary", fallback);
-  if (b == "circle") return conformal::BoundaryCondition::Circle;
-  if (b == "free") return conformal::BoundaryCondition::Free;
-  if (b == "corners") return conformal::BoundaryCondition::Corners;
-  fail(Code::InvalidArgument, Stage::Api, "--boundary must be circle, free or corners");
+  conformal::BoundaryCondition b{};
+  if (!parseBoundary(args.get("--boundary", fallback), b))
+    fail(Code::InvalidArgument, Stage::Api, "--boundary must be circle, free or corners");
+  return b;
 }
 
-const char* boundaryFlagValue(conformal::BoundaryCondition b) {
-  switch (b) {
-    case conformal::BoundaryCondition::Circle: return "circle";
-    case conformal::BoundaryCondition::Free: return "free";
-    case conformal::BoundaryCondition::Corners: return "corners";
-  }
-  return "free";
-}
+const char* boundaryFlagValue(conformal::BoundaryCondition b) { return boundaryKey(b); }
 
 }  // namespace conformesh::cli

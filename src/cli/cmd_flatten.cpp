@@ -15,6 +15,7 @@
 #include "cli/cli_util.h"
 #include "cli/command.h"
 #include "conformal/flatten.h"
+#include "core/constants.h"
 #include "mesh/mesh_io.h"
 
 namespace conformesh::cli {
@@ -59,7 +60,7 @@ int runFlatten(const std::vector<std::string>& argv) {
     if (o.boundary == BoundaryCondition::Corners) {
       const double deg = args.number("--corner-angle", kCornerAngleDeg);
       if (!(deg > 0 && deg < 180)) fail(Code::InvalidArgument, Stage::Api, "--corner-angle must be in (0, 180) degrees");
-      o.corners = detectCorners(rr.mesh, deg * M_PI / 180.0);
+      o.corners = detectCorners(rr.mesh, deg * kPi / 180.0);
     }
     FlatPatch P = flatten(rr.mesh, o);
     MeshBuffers m = rr.mesh;

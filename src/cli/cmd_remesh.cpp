@@ -12,57 +12,43 @@
 namespace conformesh::cli {
 namespace {
 
-std::string reportJson(const RemeshReport& r) {
-  std::string s = "{";
-  auto num = [&](const char* k, double v) { s += std::string("\"") + k + "\":" + jsonNumber(v) + ","; };
-  num("triangles", double(r.triangles));
-  num("vertices", double(r.vertices));
-  num("minAngle", r.minAngle);
-  num("maxAngle", r.maxAngle);
-  num("meanMinAngle", r.meanMinAngle);
-  num("pctBelow20", r.pctBelow20);
-  num("pctBelow26", r.pctBelow26);
-  num("pctBelow30", r.pctBelow30);
-  num("pctMinAtLeast40", r.pctMinAtLeast40);
-  num("pctMinAtLeast50", r.pctMinAtLeast50);
-  num("minAngleOutsideExempt", r.minAngleOutsideExempt);
-  num("trianglesBelowBoundOutsideExempt", double(r.trianglesBelowBoundOutsideExempt));
-  s += "\"exemptCorners\":[";
-  for (size_t i = 0; i < r.exemptCorners.size(); ++i) {
-    const auto& c = r.exemptCorners[i];
-    s += (i ? "," : "") + std::string("{\"vertex\":") + std::to_string(c.inputVertex) +
-         ",\"angle\":" + jsonNumber(c.angleDeg) + ",\"triangles\":[";
-    for (size_t k = 0; k < c.triangles.size(); ++k) s += (k ? "," : "") + std::to_string(c.triangles[k]);
-    s += "]}";
-  }
-  s += "],";
-  num("hausdorffRel", r.hausdorffRel);
-  num("maxDistanceToInputRel", r.maxDistanceToInputRel);
-  num("meanEdgeLength", r.meanEdgeLength);
-  num("targetEdgeLength", r.targetEdgeLength);
-  num("delaunayFraction", r.delaunayFraction);
-  num("featureCurves", double(r.featureCurves));
-  num("featureCurvesKept", double(r.featureCurvesKept));
-  num("seamEdges", double(r.seamEdges));
-  num("patches", double(r.patches));
-  s += "\"flowIterations\":[";
-  for (size_t i = 0; i < r.flowIterations.size(); ++i) s += (i ? "," : "") + std::to_string(r.flowIterations[i]);
-  s += "],";
-  num("conformingRounds", r.conformingRounds);
-  num("certificateRounds", r.certificateRounds);
-  num("estimatedTriangles", r.estimatedTriangles);
-  num("optimizeMoves", double(r.optimizeMoves));
-  num("optimizeFlips", double(r.optimizeFlips));
-  num("repairMoves", double(r.repairMoves));
-  s += "\"warnings\":[";
-  for (size_t i = 0; i < r.warnings.size(); ++i) s += (i ? "," : "") + jsonString(r.warnings[i]);
-  s += "],";
-  s += std::string("\"topologyPreserved\":") + (r.topologyPreserved ? "true" : "false") + ",";
-  s += "\"seconds\":{";
-  for (Stage st : kRemeshStages) num(stageKey(st), *r.seconds.of(st));
-  s += "\"total\":" + jsonNumber(r.seconds.total) + "}}";
-  return s;
+// A report field as JSON, by its C++ type (the rows of CONFORMESH_REMESH_REPORT).
+std::string json(double v) { return jsonNumber(v); }
+std::string json(size_t v) { return jsonNumber(double(v)); }
+std::string json(uint32_t v) { return jsonNumber(v); }
+std::string json(int v) { return jsonNumber(v); }
+std::string json(bool v) { return v ? "true" : "false"; }
+std::string json(const std::string& v) { return jsonString(v); }
+std::string json(const ExemptCorner& c);
+template <class T>
+std::string json(const std::vector<T>& v) {
+  std::string s = "[";
+  for (size_t i = 0; i < v.size(); ++i) s += (i ? "," : "") + json(v[i]);
+  return s + "]";
 }
+std::string json(const StageSeconds& t) {
+  std::string s = "{";
+  for (Stage st : kRemeshStages) s += std::string("\"") + stageKey(st) + "\":" + jsonNumber(*t.of(st)) + ",";
+  return s + "\"total\":" + jsonNumber(t.total) + "}";
+}
+
+// {"name":value,...} of the fields of `obj` a table lists: an exempt corner, the report (every
+// field of CONFORMESH_REMESH_REPORT in its order).
+void member(std::string& s, const char* name, const std::string& value) {
+  s += std::string(s.empty() ? "{" : ",") + "\"" + name + "\":" + value;
+}
+#define CONFORMESH_JSON_FIELD(type, name, init) member(s, #name, json(obj.name));
+std::string json(const ExemptCorner& obj) {
+  std::string s;
+  CONFORMESH_EXEMPT_CORNER(CONFORMESH_JSON_FIELD)
+  return s + "}";
+}
+std::string reportJson(const RemeshReport& obj) {
+  std::string s;
+  CONFORMESH_REMESH_REPORT(CONFORMESH_JSON_FIELD)
+  return s + "}";
+}
+#undef CONFORMESH_JSON_FIELD
 
 void printTable(const RemeshReport& r) {
   std::printf("%-28s %zu -> %zu\n", "triangles (in -> out)", r.inputTriangles, r.triangles);
@@ -86,61 +72,42 @@ void printTable(const RemeshReport& r) {
   std::printf(" total %.3f\n", r.seconds.total);
 }
 
-// Every flag of remesh, with RemeshOptions' defaults: what parsing accepts and --help prints.
+// An option's default as --help shows it, and its flag's value read into it, by its C++ type
+// (the rows of CONFORMESH_REMESH_OPTIONS).
+std::string shown(double v) { return jsonNumber(v); }
+std::string shown(int v) { return jsonNumber(v); }
+std::string shown(size_t v) { return jsonNumber(double(v)); }
+std::string shown(bool) { return ""; }
+std::string shown(Boundary v) { return boundaryKey(v); }
+
+void readFlag(const Args& args, const char* flag, double& v) { v = args.number(flag, v); }
+//! A count out of range is passed on for remesh to reject; a fractional one is rejected here.
+void readFlag(const Args& args, const char* flag, int& v) {
+  const double d = args.number(flag, v);
+  if (d != std::floor(d)) fail(Code::InvalidArgument, Stage::Api, std::string("option ") + flag + " needs an integer");
+  v = std::abs(d) <= 1e6 ? int(d) : -1;
+}
+//! 0 and negative values become 0, which remesh rejects (InvalidArgument), never "unlimited".
+void readFlag(const Args& args, const char* flag, size_t& v) {
+  const double d = args.number(flag, double(v));
+  v = d >= 1 ? size_t(std::min(d, 1e18)) : size_t(0);
+}
+void readFlag(const Args& args, const char* flag, bool& v) {
+  if (args.has(flag)) v = std::string(flag).rfind("--no-", 0) != 0;
+}
+void readFlag(const Args& args, const char* flag, Boundary& v) { v = boundaryFlag(args, boundaryKey(v)); }
+
+// Every flag of remesh: -o, a flag per option of CONFORMESH_REMESH_OPTIONS with its default, --json.
 std::vector<Flag> flags() {
   const RemeshOptions d;
-  const auto num = [](double v) { return jsonNumber(v); };
-  return {
-      {"-o", "OUT", "write the output mesh; .obj, .off, .stl or .ply picks the format; without it no file is written", ""},
-      {"--min-angle", "DEG", "angle bound of every output triangle outside exempt input corners, degrees in [0, 34]",
-       num(d.minAngleDeg)},
-      {"--edge-length", "L", "target edge length in flat regions, in the input's units; 0: --edge-length-rel",
-       num(d.targetEdgeLength)},
-      {"--edge-length-rel", "R", "target edge length as a fraction of the bounding-box diagonal",
-       num(d.targetEdgeLengthRel)},
-      {"--feature-angle", "DEG", "edges whose dihedral angle exceeds this (degrees) may be features",
-       num(d.featureAngleDeg)},
-      {"--min-feature-length", "L",
-       "shortest chain of sharp edges kept as a crease, in the input's units; < 0: twice the target edge "
-       "length; 0: every sharp edge",
-       num(d.minFeatureLength)},
-      {"--min-patch-width", "W",
-       "merge patches narrower than this into a neighbour, in the input's units; < 0: a twentieth of the "
-       "target edge length; 0: keep every patch",
-       num(d.minPatchWidth)},
-      {"--chord-tol", "T",
-       "chord deviation bound of the curvature sizing, in the input's units; < 0: " + num(d.chordToleranceRel) +
-           " times the diagonal; 0: no curvature sizing",
-       num(d.chordTolerance)},
-      {"--max-error", "D",
-       "error-driven remeshing: the largest Hausdorff distance to the input, in the input's units; sizes grow "
-       "as large as it allows, every sharp edge is a crease (the edge length then only scales the cuts and the "
-       "smallest edge); 0: off",
-       num(d.maxError)},
-      {"--max-error-rel", "R", "--max-error as a fraction of the bounding-box diagonal; 0: off", num(d.maxErrorRel)},
-      {"--boundary", "free|corners|circle", "the boundary condition each patch's flattening tries first",
-       boundaryFlagValue(d.boundary)},
-      {"--max-triangles", "N", "fail with TooLarge when the output would have more triangles",
-       num(double(d.maxTriangles))},
-      {"--max-vertices", "N", "fail with TooLarge when the output would have more vertices", num(double(d.maxVertices))},
-      {"--optimize-iterations", "N", "passes of the optimization (a cap), an integer >= 0",
-       num(d.optimizeIterations)},
-      {"--optimize-tolerance", "T", "stop optimizing when a pass gains less than this fraction of the mean min angle",
-       num(d.optimizeTolerance)},
-      {"--threads", "N",
-       "threads over the patches and the report's distances, an integer >= 0; 0: the hardware's concurrency; "
-       "the output is the same for every count",
-       num(d.threads)},
-      {"--no-optimize", "", "skip the optimization (vertex moves and flips judged in 3D)", ""},
-      {"--no-attributes", "",
-       "drop the input's uvs, normals, colours and other vertex data instead of interpolating them onto the "
-       "output (and keeping their seams as curves)",
-       ""},
-      {"--no-hausdorff", "", "leave the Hausdorff distance out of the report (it costs time on big meshes)", ""},
-      {"--json", "", "print the report, or the error, as one JSON object on stdout", ""},
-      {"--keep-defective", "", "write the output even when its topology is not the input's (still exit 1)", ""},
-      {"--force-topology-defect", "", "break the output on purpose, to test the topology check", ""},
-  };
+  std::vector<Flag> out = {
+      {"-o", "OUT", "write the output mesh; .obj, .off, .stl or .ply picks the format; without it no file is written", ""}};
+#define CONFORMESH_X(type, name, fallback, lo, hi, flag, value, help) \
+  if (*flag) out.push_back({flag, value, help, shown(d.name)});
+  CONFORMESH_REMESH_OPTIONS(CONFORMESH_X)
+#undef CONFORMESH_X
+  out.push_back({"--json", "", "print the report, or the error, as one JSON object on stdout", ""});
+  return out;
 }
 
 int run(const std::vector<std::string>& argv) {
@@ -151,40 +118,13 @@ int run(const std::vector<std::string>& argv) {
     if (args.positional.size() != 1) fail(Code::InvalidArgument, Stage::Api, "remesh needs exactly one input file");
     if (args.has("--edge-length") && args.has("--edge-length-rel"))
       fail(Code::InvalidArgument, Stage::Api, "give --edge-length or --edge-length-rel, not both");
-    RemeshOptions opt;
-    opt.minAngleDeg = args.number("--min-angle", opt.minAngleDeg);
-    opt.targetEdgeLength = args.number("--edge-length", opt.targetEdgeLength);
-    opt.targetEdgeLengthRel = args.number("--edge-length-rel", opt.targetEdgeLengthRel);
-    opt.featureAngleDeg = args.number("--feature-angle", opt.featureAngleDeg);
-    opt.minFeatureLength = args.number("--min-feature-length", opt.minFeatureLength);
-    opt.minPatchWidth = args.number("--min-patch-width", opt.minPatchWidth);
-    opt.chordTolerance = args.number("--chord-tol", opt.chordTolerance);
     if (args.has("--max-error") && args.has("--max-error-rel"))
       fail(Code::InvalidArgument, Stage::Api, "give --max-error or --max-error-rel, not both");
-    opt.maxError = args.number("--max-error", opt.maxError);
-    opt.maxErrorRel = args.number("--max-error-rel", opt.maxErrorRel);
-    opt.computeHausdorff = !args.has("--no-hausdorff");
-    opt.optimize = !args.has("--no-optimize");
-    opt.carryAttributes = !args.has("--no-attributes");
-    opt.keepDefectiveOutput = args.has("--keep-defective");
-    opt.forceTopologyDefect = args.has("--force-topology-defect");
-    // a count out of range is passed on for remesh to reject; a fractional one is rejected here
-    const double iterations = args.number("--optimize-iterations", opt.optimizeIterations);
-    if (iterations != std::floor(iterations))
-      fail(Code::InvalidArgument, Stage::Api, "option --optimize-iterations needs an integer");
-    opt.optimizeIterations = std::abs(iterations) <= 1e6 ? int(iterations) : -1;
-    opt.optimizeTolerance = args.number("--optimize-tolerance", opt.optimizeTolerance);
-    const double threads = args.number("--threads", opt.threads);
-    if (threads != std::floor(threads)) fail(Code::InvalidArgument, Stage::Api, "option --threads needs an integer");
-    opt.threads = std::abs(threads) <= 1e6 ? int(threads) : -1;
-    opt.boundary = boundaryFlag(args, boundaryFlagValue(opt.boundary));
-    // limits: 0 and negative values are rejected by remesh (InvalidArgument), never "unlimited"
-    auto limit = [&](const char* flag, size_t fallback) {
-      double v = args.number(flag, double(fallback));
-      return v >= 1 ? size_t(std::min(v, 1e18)) : size_t(0);
-    };
-    opt.maxTriangles = limit("--max-triangles", opt.maxTriangles);
-    opt.maxVertices = limit("--max-vertices", opt.maxVertices);
+    RemeshOptions opt;
+#define CONFORMESH_X(type, name, fallback, lo, hi, flag, value, help) \
+  if (*flag) readFlag(args, flag, opt.name);
+    CONFORMESH_REMESH_OPTIONS(CONFORMESH_X)
+#undef CONFORMESH_X
     const std::string& inPath = args.positional[0];
     ReadOptions ro;
     ro.fileName = inPath;

@@ -14,6 +14,7 @@
 #include <vector>
 
 #include "conformal/intrinsic_triangulation.h"
+#include "conformesh/remesh_schema.h"
 #include "core/mesh_buffers.h"
 
 namespace conformesh::conformal {
@@ -29,7 +30,7 @@ namespace conformesh::conformal {
 //!           the corners sum to 2 pi: a straight-edged polygon); inner loops circles. When every
 //!           outer vertex is a corner, the angles are scaled by (n - 2) pi / sum to satisfy
 //!           Gauss–Bonnet (FlowResult::cornerAngleScale).
-enum class BoundaryCondition { Circle, Free, Corners };
+using BoundaryCondition = conformesh::BoundaryCondition;  // public: conformesh/remesh_schema.h
 
 //! "circle", "free boundary" or "corner-preserving", for messages.
 inline const char* boundaryName(BoundaryCondition b) {

@@ -32,7 +32,7 @@ double inputDiagonal(const MeshBuffers& m) { return quality::boundingBox(m).diag
 
 }  // namespace
 
-bool errorDriven(const RemeshOptions& o) { return o.maxError > 0 || o.maxErrorRel > 0; }
+bool errorDriven(const RemeshOptions& o) { return o.maxError > 0 || (o.maxError < 0 && o.maxErrorRel > 0); }
 
 double maxErrorBound(const MeshBuffers& input, const RemeshOptions& o) {
   return o.maxError > 0 ? o.maxError : o.maxErrorRel * inputDiagonal(input);

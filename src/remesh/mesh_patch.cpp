@@ -263,7 +263,7 @@ bool refineAndLift(const Surface& surf, const RemeshOptions& opt, const Meshing&
   // models in ../shared/data with the free boundary).
   ro.diametralLens = true;
   ro.splitSegments = splitSegments;
-  ro.minAngleDeg = std::min(opt.minAngleDeg + kPlanarAngleMargin, 34.0);
+  ro.minAngleDeg = std::min(opt.minAngle + kPlanarAngleMargin, 34.0);
   // off-center factor for kOffcenterApexDeg: the off-center of factor f sits f / (2 tan(θ/2))
   // shortest-edge lengths from that edge, where it sees the edge under 2 atan(tan(θ/2) / f)
   // (refine.h); never above the planar default (bounds near 45° would otherwise get it)
@@ -453,7 +453,7 @@ OptimizeResult optimizeMesh(const Surface& surf, const RemeshOptions& opt, const
     pos[v] = fixed[v] ? samples.cm.samples[w.localToGlobal[v]].position : w.interiorPositions[v];
   }
   optimization::OptimizeOptions oo;
-  oo.minAngleDeg = opt.minAngleDeg;
+  oo.minAngleDeg = opt.minAngle;
   oo.maxIterations = opt.optimizeIterations;
   oo.tolerance = opt.optimizeTolerance;
   // per vertex: the layout face its latest lift landed in, where the next one starts looking

@@ -26,27 +26,29 @@ constexpr double kErrorDrivenMaxSizeRel = 0.1;
 }  // namespace
 
 void checkOptions(const RemeshOptions& opt) {
-  if (!(opt.minAngleDeg >= 0 && opt.minAngleDeg <= 34))
+  if (!(opt.minAngle >= 0 && opt.minAngle <= 34))
     fail(Code::InvalidArgument, Stage::Api, "minAngle must be in [0, 34] degrees");
   if (!(opt.maxScaleRatio > 1)) fail(Code::InvalidArgument, Stage::Api, "maxScaleRatio must be > 1");
   if (opt.optimizeIterations < 0 || opt.optimizeIterations > 1000)
     fail(Code::InvalidArgument, Stage::Api, "optimizeIterations must be in [0, 1000]");
   if (opt.threads < 0 || opt.threads > 1024) fail(Code::InvalidArgument, Stage::Api, "threads must be in [0, 1024]");
   if (!(opt.optimizeTolerance >= 0)) fail(Code::InvalidArgument, Stage::Api, "optimizeTolerance must be >= 0");
-  if (!(opt.maxError >= 0 && opt.maxError < INFINITY)) fail(Code::InvalidArgument, Stage::Api, "maxError must be finite and >= 0");
+  if (!(opt.maxError > -INFINITY && opt.maxError < INFINITY)) fail(Code::InvalidArgument, Stage::Api, "maxError must be finite");
+  if (opt.targetEdgeLength == 0)
+    fail(Code::InvalidArgument, Stage::Api, "targetEdgeLength must be > 0, or < 0 for targetEdgeLengthRel times the diagonal");
   if (!(opt.maxErrorRel >= 0 && opt.maxErrorRel < INFINITY))
     fail(Code::InvalidArgument, Stage::Api, "maxErrorRel must be finite and >= 0");
 }
 
 Surface prepareSurface(ValidatedMesh vm, const MeshBuffers& input, const RemeshOptions& opt, const Progress& progress,
-                       RemeshReport& rep) {
+                       RemeshReport& rep, StageClock& clock) {
   Surface surf;
   surf.vm = std::move(vm);
   const MeshBuffers& in = surf.vm.buffers;
   F::FeatureOptions fo;
-  fo.featureAngleDeg = opt.featureAngleDeg;
-  fo.cornerTurnDeg = opt.cornerTurnDeg;
-  fo.angleBoundDeg = opt.minAngleDeg;
+  fo.featureAngleDeg = opt.featureAngle;
+  fo.cornerTurnDeg = opt.cornerTurn;
+  fo.angleBoundDeg = opt.minAngle;
   std::vector<std::array<uint32_t, 2>> userFeatures;
   for (const auto& e : opt.featureEdges) {
     if (e[0] >= surf.vm.inputToVertex.size() || e[1] >= surf.vm.inputToVertex.size())
@@ -104,7 +106,9 @@ Surface prepareSurface(ValidatedMesh vm, const MeshBuffers& input, const RemeshO
     std::vector<std::array<uint32_t, 2>> creases = userFeatures;
     for (uint32_t e = 0; e < surf.g.edgeCount(); ++e)
       if (surf.seg.edgeKind[e] == F::EdgeKind::Feature) creases.push_back(surf.g.edgeVerts[e]);
+    const Stage segment = clock.enter(Stage::Precondition);
     surf.pre = precondition(in, creases, po);
+    clock.enter(segment);
     // no patch needs cuts, so nothing was changed: the segmentation of the input stands
     if (surf.pre.splits > 0 || surf.pre.flips > 0) {
       // the surface's curvature from the input as given (features/sizing.h), carried to the

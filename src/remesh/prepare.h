@@ -12,8 +12,9 @@ void checkOptions(const RemeshOptions& opt);
 
 //! Segment and size a validated input (`input`: the caller's buffers, for per-vertex options).
 //! Fills the report's estimate and target; fails with TooLarge when the estimate is over the
-//! limits (remesh/limits.h), InvalidArgument for feature edges or a sizing out of range.
+//! limits (remesh/limits.h), InvalidArgument for feature edges or a sizing out of range. The
+//! precondition's time goes to its own stage on `clock`, the rest to the current one.
 Surface prepareSurface(ValidatedMesh vm, const MeshBuffers& input, const RemeshOptions& opt, const Progress& progress,
-                       RemeshReport& rep);
+                       RemeshReport& rep, StageClock& clock);
 
 }  // namespace conformesh::pipeline

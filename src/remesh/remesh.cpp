@@ -49,7 +49,7 @@ void repairBelowBound(const Surface& surf, const CurveSamples& cs, const ExemptC
   const auto isBad = [&](size_t t) { return exempt.bad(out, t); };
   // a repaired star may always be a quarter of the chord tolerance from the input
   const repair::RepairStats rs = repair::relaxBelowBound(out, best.vertexFace, best.triPatch, pinned, surf.graphMesh(),
-                                                         surf.seg.facePatch, isBad, opt.minAngleDeg, kRepairRounds,
+                                                         surf.seg.facePatch, isBad, opt.minAngle, kRepairRounds,
                                                          kRepairDeviationFloor * surf.chordTolerance);
   rep.repairMoves = rs.moves;
   if (rs.rounds >= kRepairRounds && rs.left > 0)
@@ -76,7 +76,7 @@ RemeshResult run(const MeshBuffers& input, const RemeshOptions& opt, const Progr
   for (const auto& wn : vm.report.warnings) rep.warnings.push_back(wn.message);
 
   begin(Stage::Segment);
-  Surface surf = prepareSurface(std::move(vm), input, opt, progress, rep);
+  Surface surf = prepareSurface(std::move(vm), input, opt, progress, rep, clock);
 
   begin(Stage::Flatten);
   Meshing m;
@@ -85,10 +85,10 @@ RemeshResult run(const MeshBuffers& input, const RemeshOptions& opt, const Progr
   begin(Stage::CurveMesh);
   m.samples.cm = F::sampleCurves(surf.g, surf.seg, surf.sizing);
   indexSamples(surf, m.samples);
-  measureCorners(surf, opt.minAngleDeg, m);
+  measureCorners(surf, opt.minAngle, m);
 
   // refine, lift, optimize, stitch and certificate in rounds (rounds.h)
-  ExemptCorners exempt(opt.minAngleDeg);
+  ExemptCorners exempt(opt.minAngle);
   BestRound best = meshRounds(surf, opt, progress, m, exempt, rep, clock);
   if (best.bad > 0) {
     begin(Stage::Repair);
@@ -109,18 +109,18 @@ RemeshResult run(const MeshBuffers& input, const RemeshOptions& opt, const Progr
   rep.seconds = clock.seconds();
   res.mesh = std::move(best.out);
   res.report = std::move(rep);
-  if (opt.returnPatches) {
+  if (opt.patches) {
     res.patches = std::move(best.patches);
     for (auto& rp : res.patches)
       for (uint32_t& f : rp.layoutInputFace) f = surf.vm.faceToInput[surf.pre.faceOrigin[f]];
     res.patchOfTriangle = best.triPatch;
   }
-  if (opt.returnSurfacePoints || (opt.carryAttributes && hasAttributes(input))) {  // remesh/carry_attributes.h
+  if (opt.surfacePoints || (opt.attributes && hasAttributes(input))) {  // remesh/carry_attributes.h
     std::vector<uint32_t> hint(best.vertexFace.size(), kNone);
     for (size_t v = 0; v < hint.size(); ++v)
       if (best.vertexFace[v] < surf.vm.buffers.triangleCount()) hint[v] = surf.vm.faceToInput[best.vertexFace[v]];
     CornerPoints cp = locateCorners(input, res.mesh, hint);
-    if (opt.carryAttributes) interpolateAttributes(input, cp, res.mesh);
+    if (opt.attributes) interpolateAttributes(input, cp, res.mesh);
     res.cornerInputFace = std::move(cp.face);
     res.cornerBarycentric = std::move(cp.barycentric);
   }
@@ -134,7 +134,7 @@ RemeshResult remesh(const MeshBuffers& input, const RemeshOptions& options, Prog
   try {
     // attribute seams are kept as feature curves (remesh/carry_attributes.h)
     std::vector<std::array<uint32_t, 2>> seams;
-    if (options.carryAttributes) {
+    if (options.attributes) {
       checkAttributes(input, Stage::Api);
       seams = attributeSeams(input);
     }

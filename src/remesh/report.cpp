@@ -132,7 +132,7 @@ Status reportOutput(const Surface& surf, const CurveSamples& cs, const MeshBuffe
     // the same value as triangleMinAngle (the same atan2s; degrees are monotone in radians)
     const double a = std::isnan(triMinRad[t]) ? triangleMinAngle(out, t) : triMinRad[t] * 180.0 / kPi;
     rep.minAngleOutsideExempt = std::min(rep.minAngleOutsideExempt, a);
-    if (a < opt.minAngleDeg) ++rep.trianglesBelowBoundOutsideExempt;
+    if (a < opt.minAngle) ++rep.trianglesBelowBoundOutsideExempt;
   }
   rep.meanEdgeLength = et.edges.meanLength;
   rep.delaunayFraction = et.edges.delaunayFraction;

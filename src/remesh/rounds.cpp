@@ -152,7 +152,7 @@ BestRound meshRounds(const Surface& surf, const RemeshOptions& opt, const Progre
       bestCollapsed = verdict.collapsed;
       outIsBest = true;
       bestCurveSamples = m.samples.cm.curveSamples;
-      if (opt.returnPatches) best.patches = patchSnapshot(m, out);
+      if (opt.patches) best.patches = patchSnapshot(m, out);
       staleRounds = 0;
     } else if (++staleRounds >= 2 && bestDoubled == 0) {
       // Two rounds in a row no better than the best: what is left does not yield to size (a

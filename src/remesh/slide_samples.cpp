@@ -15,7 +15,7 @@ std::vector<std::vector<uint8_t>> slideSamples(const Surface& surf, const Remesh
   Patches& work = m.patches;
   std::vector<std::vector<uint8_t>> slid(work.size());
   const size_t nS = m.samples.cm.samples.size();
-  const double bound = opt.minAngleDeg;
+  const double bound = opt.minAngle;
   struct Hold {
     uint32_t p, v;
   };

@@ -82,7 +82,8 @@ describe('package CLI', () => {
 });
 
 // --help on every command: the flags it prints are those its parser accepts. The candidates are
-// every flag-like string of the CLI's source; the parser itself says which a command accepts.
+// every flag-like string of the CLI's source and every flag of the module's option table (remesh's
+// flags come from it); the parser itself says which a command accepts.
 describe('package CLI: --help and --version', () => {
   const commands = [...run(['--help']).stdout.matchAll(/^ {2}conformesh ([a-z0-9]+) /gm)].map((m) => m[1]!);
   const source = readFileSync(join(root, 'bindings', 'src', 'cli.ts'), 'utf8');
@@ -112,7 +113,8 @@ describe('package CLI: --help and --version', () => {
       expect((await inProcess([command, 'some-file', '--json', '--help'])).out).toBe(help.stdout);
       const listed = [...help.stdout.matchAll(/^ {2}(--?[a-z][a-z0-9-]*)/gm)].map((m) => m[1]!).filter((f) => f !== '-h');
       const accepted: string[] = [];
-      for (const flag of candidates) {
+      const tableFlags = (await init()).remeshSchema().options.map((o) => o.flag).filter((f) => f !== '');
+      for (const flag of new Set([...candidates, ...tableFlags])) {
         const r = await inProcess([command, flag]);
         if (!r.out.includes(`unknown option ${flag}`)) accepted.push(flag);
       }
@@ -288,7 +290,7 @@ describe('package CLI: refine2d, flatten, remesh', () => {
     expect(wasm.status).toBe(nat.status);
     const w = JSON.parse(wasm.stdout), n = JSON.parse(nat.stdout);
     expect(Object.keys(w)).toEqual(Object.keys(n));
-    // one seconds key per stage of the table, in its order (src/core/stages.h), in both
+    // one seconds key per stage of the table, in its order (include/conformesh/stages.h), in both
     expect(Object.keys(w.seconds)).toEqual([...REMESH_STAGES.map((s) => s.key), 'total']);
     expect(Object.keys(n.seconds)).toEqual(Object.keys(w.seconds));
     // Both builds compute the same bits (docs/ARCHITECTURE.md, "Determinism"): only the timings differ.

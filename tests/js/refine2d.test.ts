@@ -2,7 +2,7 @@
 // (angles, input points first and unchanged, constrained edges on their segments), errors,
 // progress and cancel, worker vs direct.
 import { afterAll, describe, expect, it } from 'vitest';
-import { ConformeshError, createRemesher, init, readPoly, refine2d, type ProgressEvent } from '../../dist/index.js';
+import { ConformeshError, createRemesher, init, readPoly, refine2d, type ProgressEvent, type Refine2dResult } from '../../dist/index.js';
 import { dataFile } from './helpers.js';
 
 function pslgFile(name: string): Uint8Array {
@@ -119,8 +119,11 @@ describe('refine2d', () => {
     expect(Math.min(...signedAreas(r.vertices, r.triangles))).toBeGreaterThan(0);
   });
 
-  it('stops at maxInsertions with status IterationLimit and a valid mesh', async () => {
-    const r = await refine2d(squareWithHole, { minAngle: 30, maxArea: 1e-4, maxInsertions: 50 });
+  it('stops at maxInsertions: throws IterationLimit with the valid mesh so far attached', async () => {
+    const error = await refine2d(squareWithHole, { minAngle: 30, maxArea: 1e-4, maxInsertions: 50 }).catch((e: unknown) => e);
+    expect(error).toBeInstanceOf(ConformeshError);
+    expect(error).toMatchObject({ code: 'IterationLimit', stage: 'refine' });
+    const r = (error as ConformeshError).result as Refine2dResult;
     expect(r.status).toBe('IterationLimit');
     expect(r.insertions).toBeLessThanOrEqual(50);
     expect(Math.min(...signedAreas(r.vertices, r.triangles))).toBeGreaterThan(0);
@@ -186,6 +189,26 @@ describe('refine2d in workers', () => {
     expect(viaWorker.minAngle).toBe(direct.minAngle);
     expect(events.at(-1)).toEqual({ stage: 'refine', fraction: 1 });
     expect(await remesher.readPoly(pslgFile('square_holes.poly'))).toEqual(cm.readPoly(pslgFile('square_holes.poly')));
+  });
+
+  it('the same error model as a direct call: IterationLimit thrown, the partial mesh attached', async () => {
+    const cm = await init();
+    const options = { minAngle: 30, maxArea: 1e-4, maxInsertions: 50 };
+    const viaWorker = await remesher.refine2d(squareWithHole, options).catch((e: unknown) => e);
+    let direct: unknown;
+    try {
+      cm.refine2d(squareWithHole, options);
+    } catch (e) {
+      direct = e;
+    }
+    for (const e of [viaWorker, direct]) {
+      expect(e).toBeInstanceOf(ConformeshError);
+      expect(e).toMatchObject({ code: 'IterationLimit', stage: 'refine' });
+    }
+    const w = (viaWorker as ConformeshError).result as Refine2dResult;
+    const d = (direct as ConformeshError).result as Refine2dResult;
+    expect(w.triangles).toEqual(d.triangles);
+    expect(w.triangles.length).toBeGreaterThan(0);
   });
 
   it('cancels a running call through the signal (the worker is replaced)', async () => {

@@ -145,7 +145,7 @@ describe('remesh', () => {
     expect(same.mesh.triangles).toEqual(good.mesh.triangles);
   });
 
-  it("maxError: the report's Hausdorff distance within the bound, a looser bound coarser; negative is InvalidArgument", async () => {
+  it("maxError: the report's Hausdorff distance within the bound, a looser bound coarser; a negative maxErrorRel is InvalidArgument", async () => {
     const cm = await init();
     const spot = cm.readMesh(dataFile('spot.obj'));
     const tight = cm.remesh(spot, { maxErrorRel: 2e-3, attributes: false });
@@ -154,7 +154,7 @@ describe('remesh', () => {
     expect(loose.report.hausdorffRel).toBeLessThanOrEqual(8e-3);
     expect(loose.report.triangles).toBeLessThan(tight.report.triangles);
     expect(tight.report.trianglesBelowBoundOutsideExempt).toBe(0);
-    expect(() => cm.remesh(small, { maxError: -1 })).toThrow(/maxError = -1 must be >= 0/);
+    expect(() => cm.remesh(small, { maxErrorRel: -1 })).toThrow(/maxErrorRel = -1 must be >= 0/);
   });
 
   it('keeps the heap flat (±1 %) over 100 calls', async () => {

@@ -1,4 +1,4 @@
-// One stage table: C++ (src/core/stages.h). The TypeScript copy (bindings/src/stages.ts), the
+// One stage table: C++ (include/conformesh/stages.h). The TypeScript copy (bindings/src/stages.ts), the
 // report's seconds, the progress events and the docs' list must agree with the module's export.
 import { readFileSync } from 'node:fs';
 import { join } from 'node:path';

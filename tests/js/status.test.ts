@@ -1,7 +1,7 @@
 import { describe, expect, it } from 'vitest';
 import { ConformeshError, init, StatusCode } from '../../dist/index.js';
 
-// One table: C++ (src/core/status.h). The TypeScript union must agree with the module's export.
+// One table: C++ (include/conformesh/status.h). The TypeScript union must agree with the module's export.
 describe('status table', () => {
   it('the TypeScript StatusCode union equals the module statusTable(), name for name and value for value', async () => {
     const cm = await init();

@@ -1,6 +1,7 @@
 // CTest: `conformesh COMMAND --help` on every command of src/cli/. The flags are taken from each
 // command's source (every "-x" / "--name" string literal of cmd_NAME.cpp: its flag table and the
-// flags its code reads), never from a list kept here. Checks: --help and -h exit 0 and print the
+// flags its code reads; for remesh also include/conformesh/remesh_schema.h, the option table its flags come
+// from), never from a list kept here. Checks: --help and -h exit 0 and print the
 // same text; every such flag the parser accepts has a line in the help, and every flag the help
 // lists is accepted; unknown options still fail; --version prints package.json's version.
 // usage: node cli_help.mjs CONFORMESH_EXE SOURCE_DIR
@@ -22,7 +23,8 @@ for (const file of readdirSync(cliDir).filter((f) => /^cmd_.*\.cpp$/.test(f)).so
   const name = text.match(/CommandRegistrar\s+\w+\(\{\s*"([a-z0-9]+)"/)?.[1];
   check(name !== undefined, `${file}: registers a command`);
   if (!name) continue;
-  const flags = [...new Set([...text.matchAll(/"(--?[a-z][a-z0-9-]*)"/g)].map((m) => m[1]))];
+  const tables = name === 'remesh' ? readFileSync(join(sourceDir, 'include', 'conformesh', 'remesh_schema.h'), 'utf8') : '';
+  const flags = [...new Set([...(text + tables).matchAll(/"(--?[a-z](?:[a-z0-9-]*[a-z0-9])?)"/g)].map((m) => m[1]))];
   commands.push({ name, file, flags });
 }
 check(commands.some((c) => c.name === 'remesh'), 'remesh is among the commands found');
@@ -63,14 +65,14 @@ for (const { name, file, flags } of commands) {
 }
 
 // remesh: the defaults the help prints are the ones a run uses: every value flag given its
-// printed default gives the same bytes as no flag at all (--edge-length aside: it excludes
-// --edge-length-rel).
+// printed default gives the same bytes as no flag at all (--edge-length and --max-error aside:
+// they exclude --edge-length-rel and --max-error-rel).
 {
   const dir = mkdtempSync(join(tmpdir(), 'conformesh-help-'));
   try {
     const help = run(['remesh', '--help']).stdout.replace(/\s+/g, ' ');
     const given = [...help.matchAll(/ (--[a-z][a-z0-9-]*) \S+ [^(]*?\(default ([^)]+)\)/g)]
-      .filter(([, flag]) => flag !== '--edge-length')
+      .filter(([, flag]) => flag !== '--edge-length' && flag !== '--max-error')
       .flatMap(([, flag, value]) => [flag, value]);
     check(given.includes('--min-angle') && given.includes('--boundary'), `remesh --help: defaults found (${given.join(' ')})`);
     const cube = join(dir, 'cube.off');

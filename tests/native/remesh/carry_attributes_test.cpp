@@ -219,7 +219,7 @@ TEST_CASE("carry attributes: a plane with two texture charts keeps its seam, eac
   CHECK(worstValue <= 1e-9);
   CHECK(worstNormal <= 1e-12);
   // without carrying: no attributes, no seams, no surface points
-  o.carryAttributes = false;
+  o.attributes = false;
   RemeshResult plain = remesh(in, o);
   REQUIRE(plain.status.ok());
   CHECK(plain.mesh.attributes.empty());
@@ -238,7 +238,7 @@ TEST_CASE("carry attributes: malformed attributes fail cleanly") {
   in.attributes[2].values[0] = NAN;
   CHECK(remesh(in).status.code == Code::NonFiniteCoordinate);
   RemeshOptions o;
-  o.carryAttributes = false;  // not looked at
+  o.attributes = false;  // not looked at
   CHECK(remesh(in, o).status.ok());
 }
 

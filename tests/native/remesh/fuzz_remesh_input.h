@@ -33,8 +33,8 @@ inline RemeshInput decodeRemeshInput(const uint8_t* data, size_t size) {
   RemeshOptions& o = in.options;
   const uint32_t ob = next();
   const double angles[4] = {20, 25, 30, 34}, features[4] = {20, 40, 60, 90}, sizes[4] = {0.15, 0.25, 0.35, 0.5};
-  o.minAngleDeg = angles[ob & 3];
-  o.featureAngleDeg = features[(ob >> 2) & 3];
+  o.minAngle = angles[ob & 3];
+  o.featureAngle = features[(ob >> 2) & 3];
   o.targetEdgeLengthRel = sizes[(ob >> 4) & 3];
   o.computeHausdorff = false;
   o.maxTriangles = 3000;

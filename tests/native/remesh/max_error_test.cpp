@@ -52,13 +52,29 @@ TEST_CASE("max error: a cube (flat faces) keeps its edges and grows its triangle
   CHECK(r.report.featureCurvesKept == r.report.featureCurves);
 }
 
-TEST_CASE("max error: negative or non-finite bounds are InvalidArgument") {
-  for (double bad : {-1e-3, double(NAN), double(INFINITY)}) {
+TEST_CASE("max error: non-finite bounds and a negative maxErrorRel are InvalidArgument; maxError < 0 defers to maxErrorRel, 0 is off") {
+  for (double bad : {double(NAN), double(INFINITY), -double(INFINITY)}) {
     RemeshOptions o;
     o.maxError = bad;
     CHECK(remesh(testshapes::cube(2), o).status.code == Code::InvalidArgument);
-    o = {};
+  }
+  for (double bad : {-1e-3, double(NAN), double(INFINITY)}) {
+    RemeshOptions o;
     o.maxErrorRel = bad;
     CHECK(remesh(testshapes::cube(2), o).status.code == Code::InvalidArgument);
+  }
+  RemeshOptions off;
+  off.hausdorffSamples = 2000;
+  const RemeshResult plain = remesh(testshapes::cube(4), off);
+  REQUIRE(plain.status.ok());
+  RemeshOptions negative = off, zero = off;
+  negative.maxError = -5;  // maxErrorRel is 0: off
+  zero.maxError = 0;       // off, whatever maxErrorRel says
+  zero.maxErrorRel = 1e-3;
+  for (const RemeshOptions& o : {negative, zero}) {
+    const RemeshResult r = remesh(testshapes::cube(4), o);
+    REQUIRE(r.status.ok());
+    CHECK(r.mesh.positions == plain.mesh.positions);
+    CHECK(r.mesh.triangles == plain.mesh.triangles);
   }
 }
