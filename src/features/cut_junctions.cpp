@@ -299,8 +299,8 @@ size_t patchesOver(const Segmentation& seg, const std::vector<uint32_t>& faces) 
 uint32_t straightenCutEars(const EdgeGraph& g, Segmentation& seg, const std::vector<uint32_t>& region, bool keepSplit) {
   const double kEar = kNarrowCutWedge;  // wedges below this are candidates
   const double kGain = 1.0 * kPi / 180.0;  // a move must raise the smallest wedge by this much
-  constexpr size_t kMaxFan = 64;  // faces in one wedge (needle fans)
   constexpr int kPasses = 8;
+  constexpr size_t kMaxFan = 64;  // faces in one wedge (needle fans)
   constexpr size_t kMaxPrune = 4096;  // edges one move may change, pruned branches included
   const std::vector<EdgeKind> original = seg.edgeKind;
   WedgeScratch scratch;
@@ -421,7 +421,7 @@ uint32_t straightenCutEars(const EdgeGraph& g, Segmentation& seg, const std::vec
           const bool regroups = oldCutOnRim || toggled.size() > size_t(1 + int(cutB)) + rimEdges.size();
           if (ok && regroups) {
             rebuildCurves(g, seg);
-            ok = touchedPatchesAreDisks(toggled) && (!keepSplit || patchesOver(seg, region) >= 2);
+            ok = touchedPatchesAreDisks(toggled) && (!keepSplit || region.empty() || patchesOver(seg, region) >= 2);
             if (!ok) {
               undo();
               rebuildCurves(g, seg);

@@ -29,7 +29,7 @@ uint32_t improveCutJunctions(const EdgeGraph& g, Segmentation& seg, double scale
 //! cannot refine it away. Returns the number of moves. `region` (input faces; empty: all): only
 //! wedges in it are tried (splitPatch passes the split patch, whose new cuts lie in it, so a
 //! split costs the patch's size, not the mesh's). keepSplit: a move that would leave the faces of
-//! `region` in one patch (a pruned branch that separated its parts) is not made (splitPatch: the
+//! `region` (not empty) in one patch (a pruned branch that separated its parts) is not made (splitPatch: the
 //! parts are what the split is for); a sliver patch inside a wedge may go.
 uint32_t straightenCutEars(const EdgeGraph& g, Segmentation& seg, const std::vector<uint32_t>& region = {},
                            bool keepSplit = false);
