@@ -436,6 +436,8 @@ export interface RemeshReport {
   curveSamples: number;
   flowIterations: number[];
   patchSplitsForScale: number;
+  /** Patches cut in two through the point where their flattening's scale sank (a finger tip). */
+  sinkCuts: number;
   conformingRounds: number;
   certificateRounds: number;
   /** Vertex moves and edge flips accepted by the optimization. */

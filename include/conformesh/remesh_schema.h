@@ -136,7 +136,9 @@ inline bool parseBoundary(const std::string& s, Boundary& b) {
 // maxDistanceToInputRel: the largest output vertex distance to the input over the diagonal;
 // delaunayFraction: interior edges that are Delaunay in 3D; droppedFeatureEdges: sharp edges found
 // not to be creases (minFeatureLength); seamEdges: input edges kept as curves for being attribute
-// seams; flowIterations: Newton iterations per patch; optimizeMoves, optimizeFlips: accepted by the
+// seams; flowIterations: Newton iterations per patch; patchSplitsForScale: geodesic Voronoi splits
+// of patches whose flattening failed or spread its scale past maxScaleRatio; sinkCuts: patches cut
+// in two through the point their scale sank to (features/sink_cuts.h); optimizeMoves, optimizeFlips: accepted by the
 // optimization (moves include curve-sample slides); repairMoves: free vertices moved where the
 // certificate left a triangle below the bound (remesh/repair.h); estimatedTriangles: the output size
 // predicted before refinement (remesh/limits.h); topologyPreserved: false only with
@@ -153,7 +155,7 @@ inline bool parseBoundary(const std::string& s, Boundary& b) {
   X(size_t, featureCurves, 0) X(size_t, featureCurvesKept, 0) X(size_t, sharpEdges, 0) X(size_t, cutEdges, 0)           \
   X(size_t, droppedFeatureEdges, 0) X(size_t, seamEdges, 0)                                                             \
   X(size_t, patches, 0) X(size_t, curves, 0) X(size_t, curveSamples, 0)                                                 \
-  X(std::vector<int>, flowIterations, {}) X(size_t, patchSplitsForScale, 0)                                             \
+  X(std::vector<int>, flowIterations, {}) X(size_t, patchSplitsForScale, 0) X(size_t, sinkCuts, 0)                       \
   X(int, conformingRounds, 0) X(int, certificateRounds, 0)                                                              \
   X(size_t, optimizeMoves, 0) X(size_t, optimizeFlips, 0) X(size_t, repairMoves, 0)                                     \
   X(double, estimatedTriangles, 0) X(bool, topologyPreserved, false)                                                    \

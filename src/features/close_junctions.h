@@ -9,6 +9,10 @@
 
 namespace conformesh::features {
 
+//! Corners joined by a curve shorter than this many junction scales (about the output edge
+//! length) are merged where one is a junction of cuts: the minLength segment and splitPatch pass.
+constexpr double kCloseJunctionFactor = 0.25;
+
 //! Where a curve shorter than minLength joins two corners and one of them is a junction only of
 //! cuts (ours, not features), move those cuts to end at the other corner: each cut's stretch
 //! near the junction is replaced by the shortest path of input edges to the other corner (a cut

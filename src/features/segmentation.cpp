@@ -15,10 +15,6 @@
 namespace conformesh::features {
 namespace {
 
-// Corners joined by a curve shorter than this many junction scales (about the output edge
-// length) are merged where one is a junction of cuts (features/close_junctions.h).
-constexpr double kCloseJunctionFactor = 0.25;
-
 // Geodesic Voronoi partition of the face set `region` (Dijkstra on the dual graph, centroid
 // distances, never crossing a curve edge) with farthest-point seeds, one seed at a time: the
 // partition with k seeds is the one with k - 1 updated by the k-th seed's Dijkstra (only faces

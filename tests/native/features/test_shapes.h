@@ -116,4 +116,23 @@ inline MeshBuffers square(int n) {
   return b.m;
 }
 
+//! A unit disk (30 rings, 64 sectors, centre vertex 0) raised into a bump z = height·exp(-r²/width²):
+//! a finger whose tip, vertex 0, gathers the curvature (the scale of a flattening sinks there).
+inline MeshBuffers bump(double height, double width) {
+  Builder b;
+  const double pi = 3.14159265358979323846;
+  const int rings = 30, sectors = 64;
+  auto at = [&](int k, int i) {
+    const double r = double(k) / rings, a = 2 * pi * (i % sectors) / sectors;
+    return b.vertex(r * std::cos(a), r * std::sin(a), height * std::exp(-r * r / (width * width)));
+  };
+  for (int i = 0; i < sectors; ++i) b.tri(at(0, 0), at(1, i), at(1, i + 1));
+  for (int k = 1; k < rings; ++k)
+    for (int i = 0; i < sectors; ++i) {
+      b.tri(at(k, i), at(k + 1, i), at(k + 1, i + 1));
+      b.tri(at(k, i), at(k + 1, i + 1), at(k, i + 1));
+    }
+  return b.m;
+}
+
 }  // namespace conformesh::testshapes

@@ -1,0 +1,159 @@
+#include "features/sink_cuts.h"
+
+#include <algorithm>
+#include <cmath>
+#include <queue>
+#include <unordered_map>
+#include <utility>
+#include <vector>
+
+#include "features/close_junctions.h"
+#include "features/cut_junctions.h"
+#include "features/patch_mesh.h"
+
+namespace conformesh::features {
+namespace {
+
+bool onCurve(const EdgeGraph& g, const Segmentation& seg, uint32_t v) {
+  for (uint32_t k = g.vertexEdgeStart[v]; k < g.vertexEdgeStart[v + 1]; ++k)
+    if (seg.isCurveEdge(g.vertexEdgeIds[k])) return true;
+  return false;
+}
+
+// Edge e may carry the cut: on no curve, and beside patch p (both its faces in p, or, for the
+// last step onto the border, one of them).
+bool stepAllowed(const EdgeGraph& g, const Segmentation& seg, uint32_t e, uint32_t p, bool toBorder) {
+  if (seg.isCurveEdge(e)) return false;
+  int inside = 0;
+  for (uint32_t f : g.edgeFaces[e]) inside += f != kNone && seg.facePatch[f] == p;
+  return toBorder ? inside > 0 : inside == 2;
+}
+
+// The ring of interior vertex v: its neighbours in the order of its faces, each with the 3D angle
+// from the first one; `total` the angle sum. Empty when the faces around v do not close a fan.
+std::vector<std::pair<uint32_t, double>> ringAngles(const EdgeGraph& g, uint32_t v, double& total) {
+  std::vector<std::pair<uint32_t, double>> ring;
+  const uint32_t e0 = g.vertexEdgeIds[g.vertexEdgeStart[v]];
+  uint32_t w = g.otherVertex(e0, v), f = g.edgeFaces[e0][0];
+  const uint32_t valence = g.vertexEdgeStart[v + 1] - g.vertexEdgeStart[v];
+  double acc = 0;
+  for (uint32_t step = 0; step < valence; ++step) {
+    if (f == kNone) return {};
+    ring.push_back({w, acc});
+    int c = 0;
+    while (c < 3 && g.faces[f][c] != v) ++c;
+    if (c == 3) return {};
+    acc += g.cornerAngle(f, c);
+    const uint32_t next = g.faces[f][(c + 1) % 3] == w ? g.faces[f][(c + 2) % 3] : g.faces[f][(c + 1) % 3];
+    const uint32_t e = g.findEdge(v, next);
+    if (e == kNone) return {};
+    f = g.edgeFaces[e][0] == f ? g.edgeFaces[e][1] : g.edgeFaces[e][0];
+    w = next;
+  }
+  if (w != g.otherVertex(e0, v)) return {};
+  total = acc;
+  return ring;
+}
+
+// The shortest path (input edges, from `sink`) inside patch p to the first vertex on a curve,
+// whose first step goes to a vertex of `firstSteps` and which avoids the vertices of `avoid`;
+// empty when there is none. Ties broken by vertex index, so the path is deterministic.
+std::vector<uint32_t> pathToBorder(const EdgeGraph& g, const Segmentation& seg, uint32_t p, uint32_t sink,
+                                   const std::vector<uint32_t>& firstSteps, const std::vector<uint32_t>& avoid) {
+  struct Item {
+    double d;
+    uint32_t v;
+    bool operator>(const Item& o) const { return d > o.d || (d == o.d && v > o.v); }
+  };
+  std::priority_queue<Item, std::vector<Item>, std::greater<Item>> pq;
+  std::unordered_map<uint32_t, std::pair<double, uint32_t>> best;  // vertex -> (distance, predecessor)
+  for (uint32_t v : avoid) best[v] = {-1.0, kNone};                // never entered
+  best[sink] = {0.0, kNone};
+  for (uint32_t w : firstSteps) {
+    const uint32_t e = g.findEdge(sink, w);
+    if (e == kNone || best.count(w) || !stepAllowed(g, seg, e, p, onCurve(g, seg, w))) continue;
+    best[w] = {g.edgeLength(e), sink};
+    pq.push({g.edgeLength(e), w});
+  }
+  uint32_t end = kNone;
+  while (!pq.empty()) {
+    const Item it = pq.top();
+    pq.pop();
+    if (it.d > best[it.v].first) continue;
+    if (onCurve(g, seg, it.v)) {
+      end = it.v;
+      break;
+    }
+    for (uint32_t k = g.vertexEdgeStart[it.v]; k < g.vertexEdgeStart[it.v + 1]; ++k) {
+      const uint32_t e = g.vertexEdgeIds[k];
+      const uint32_t w = g.otherVertex(e, it.v);
+      if (!stepAllowed(g, seg, e, p, onCurve(g, seg, w))) continue;
+      const double d = it.d + g.edgeLength(e);
+      auto found = best.find(w);
+      if (found != best.end() && !(d < found->second.first)) continue;
+      best[w] = {d, it.v};
+      pq.push({d, w});
+    }
+  }
+  std::vector<uint32_t> path;
+  for (uint32_t v = end; v != kNone; v = v == sink ? kNone : best[v].second) path.push_back(v);
+  std::reverse(path.begin(), path.end());
+  return path;
+}
+
+}  // namespace
+
+bool cutThroughSink(const EdgeGraph& g, Segmentation& seg, uint32_t p, uint32_t sink, double minWedge) {
+  if (p >= seg.patches.size() || sink >= g.vertexCount || onCurve(g, seg, sink)) return false;
+  double theta = 0;
+  const auto ring = ringAngles(g, sink, theta);
+  if (ring.empty()) return false;
+  std::vector<uint32_t> all;
+  for (const auto& r : ring) all.push_back(r.first);
+  const std::vector<uint32_t> first = pathToBorder(g, seg, p, sink, all, {});
+  if (first.size() < 2) return false;
+  double a1 = 0;
+  for (const auto& [w, a] : ring)
+    if (w == first[1]) a1 = a;
+  // the second path leaves the sink roughly opposite the first
+  std::vector<uint32_t> opposite;
+  for (const auto& [w, a] : ring) {
+    const double d = std::abs(a - a1), around = std::min(d, theta - d);
+    if (around >= 0.375 * theta && around >= minWedge) opposite.push_back(w);
+  }
+  const std::vector<uint32_t> avoid(first.begin() + 1, first.end());
+  const std::vector<uint32_t> second = pathToBorder(g, seg, p, sink, opposite, avoid);
+  if (second.size() < 2) return false;
+
+  const std::vector<uint32_t> region = seg.patches[p];  // the cuts and their ends lie in it
+  const std::vector<EdgeKind> before = seg.edgeKind;
+  const uint32_t cutEdges = seg.cutEdgeCount;
+  for (const auto* path : {&first, &second})
+    for (size_t i = 0; i + 1 < path->size(); ++i) {
+      const uint32_t e = g.findEdge((*path)[i], (*path)[i + 1]);
+      if (seg.edgeKind[e] != EdgeKind::None) continue;
+      seg.edgeKind[e] = EdgeKind::Cut;
+      ++seg.cutEdgeCount;
+    }
+  rebuildCurves(g, seg);
+  improveCutJunctions(g, seg, seg.junctionScale, region);
+  mergeCloseJunctions(g, seg, kCloseJunctionFactor * seg.junctionScale, region);
+  straightenCutEars(g, seg, region, true);
+  bool ok = patchesOver(seg, region) >= 2;
+  if (ok) {
+    const std::vector<uint8_t> mask = seg.curveMask();
+    std::vector<uint32_t> parts;
+    for (uint32_t f : region) parts.push_back(seg.facePatch[f]);
+    std::sort(parts.begin(), parts.end());
+    parts.erase(std::unique(parts.begin(), parts.end()), parts.end());
+    for (uint32_t q : parts) ok = ok && extractPatch(g, mask, seg.patches[q], false).isDisk();
+  }
+  if (!ok) {
+    seg.edgeKind = before;
+    seg.cutEdgeCount = cutEdges;
+    rebuildCurves(g, seg);
+  }
+  return ok;
+}
+
+}  // namespace conformesh::features

@@ -1,0 +1,32 @@
+// conformesh — sink cuts: a patch whose conformal scale factor collapses towards a point (a
+// finger tip, an ear, a horn: curvature gathered in a small region) is cut in two by a path of
+// input edges through that point, from its border to its border.
+//
+// With u = 0 on the border (the free boundary condition, the least area distortion: Sawhney and
+// Crane, Boundary first flattening, ACM TOG 2017) the scale cannot sink where the border passes:
+// the point, on the border of both halves, keeps the scale of the border. The path leaves the
+// point in two roughly opposite directions, so each half sees the point as a smooth stretch of
+// its border (about half the 3D angle around it) and its map stays regular there. A slit ending
+// at the point would not do: its end is a corner of the flat domain whose angle is set by the
+// flow, not by the surface, and the map is singular there unless the two agree. A geodesic
+// Voronoi split (splitPatch) leaves the point inside one part, which keeps most of the sink;
+// cutting through it bounds the scale with one split per sink, so far fewer patches.
+#pragma once
+
+#include <cstdint>
+
+#include "features/edge_graph.h"
+#include "features/segmentation.h"
+
+namespace conformesh::features {
+
+//! Cut patch p in two along two shortest paths of input edges inside it from `sink` (a vertex of
+//! the patch on no curve) to its border, leaving the sink in roughly opposite directions (the
+//! second turns at least 3/8 of the 3D angle around the sink away from the first, and each side
+//! keeps at least `minWedge` radians). The edges become Cut edges; the junction repairs of a
+//! split follow (features/cut_junctions.h, close_junctions.h), over the patch only. False, with
+//! the segmentation as it was, when there is no such pair of paths or the patch would not end
+//! up as two or more disks. O(patch) plus the rebuilds of the curves.
+bool cutThroughSink(const EdgeGraph& g, Segmentation& seg, uint32_t p, uint32_t sink, double minWedge);
+
+}  // namespace conformesh::features
