@@ -11,6 +11,7 @@ import { chromium, type BrowserContext, type Page } from 'playwright-core';
 import { build } from 'vite';
 import { afterAll, beforeAll, describe, expect, it } from 'vitest';
 import { createRemesher, readMesh } from '../../dist/index.js';
+import { cancelLongRemesh } from './cancel.ts';
 import { listenLocal } from './listen.ts';
 import { decodePng, pixelStats, type Image } from './png.ts';
 import { stageFraction } from '../../web/src/stages.ts';
@@ -295,19 +296,8 @@ describe('demo page in headless Chromium', () => {
 
   if (HAS_REMESH) {
     it('cancels a running remesh from the Cancel button', async () => {
-      // a remesh that lasts seconds (fandisk at the page's 2 % can end before the click lands)
-      const edge = page.locator('.lil-controller', { hasText: 'edge length' }).locator('input').first();
-      const defaultEdge = await edge.inputValue();
-      await edge.fill('0.002');
-      await edge.press('Enter');
-      await page.click('[data-testid=remesh]');
-      await page.waitForFunction(() => document.body.dataset.state === 'remeshing', undefined, { timeout: 10_000 });
-      await page.click('[data-testid=cancel]');
-      expect(await waitState(['loaded', 'error', 'remeshed'], 20_000)).toBe('loaded');
-      expect(await page.textContent('[data-testid=notice]')).toMatch(/cancelled/i);
+      await cancelLongRemesh(page);
       expect(await errorsShown()).toEqual([]);
-      await edge.fill(defaultEdge);
-      await edge.press('Enter');
     });
 
     it('remeshes fandisk in the worker: the table reports the exported mesh, all three views drawn, no error shown', async () => {

@@ -12,6 +12,7 @@ import { fileURLToPath } from 'node:url';
 import { chromium, type BrowserContext, type Page } from 'playwright-core';
 import { build } from 'vite';
 import { afterAll, beforeAll, describe, expect, it } from 'vitest';
+import { cancelLongRemesh } from './cancel.ts';
 import { listenLocal } from './listen.ts';
 
 const root = fileURLToPath(new URL('../../', import.meta.url));
@@ -213,20 +214,9 @@ describe('threaded WebAssembly build in headless Chromium', () => {
       const threads = await remeshThreads();
       if (isolated) expect(threads).toBeGreaterThan(1);
       else expect(threads).toBe(1);
-      // Cancel during a remesh of seconds (its worker, and a threaded build's own workers, are
-      // stopped), then the page's next remesh runs on a fresh worker with as many threads
-      const edge = page.locator('.lil-controller', { hasText: 'edge length' }).locator('input').first();
-      const defaultEdge = await edge.inputValue();
-      await edge.fill('0.002');
-      await edge.press('Enter');
-      await page.click('[data-testid=remesh]');
-      await page.waitForFunction(() => document.body.dataset.state === 'remeshing', undefined, { timeout: 10_000 });
-      await page.click('[data-testid=cancel]');
-      await page.waitForFunction(() => ['loaded', 'error', 'remeshed'].includes(document.body.dataset.state ?? ''), undefined, { timeout: 20_000 });
-      expect(await page.evaluate(() => document.body.dataset.state)).toBe('loaded');
-      expect(await page.textContent('[data-testid=notice]')).toMatch(/cancelled/i);
-      await edge.fill(defaultEdge);
-      await edge.press('Enter');
+      // a cancel stops the call's worker (and a threaded build's own workers); the page's next
+      // remesh runs on a fresh worker with as many threads
+      await cancelLongRemesh(page);
       await page.click('[data-testid=remesh]');
       await page.waitForFunction(() => ['remeshed', 'error'].includes(document.body.dataset.state ?? ''), undefined, { timeout: 100_000 });
       expect(await page.evaluate(() => document.body.dataset.state)).toBe('remeshed');
