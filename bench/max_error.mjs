@@ -5,7 +5,9 @@
 // target edge lengths searched (secant in log-log: Hausdorff ~ target²) until its measured
 // Hausdorff distance brackets ours; CGAL's count at ours is interpolated in log-log between the
 // bracketing runs. Writes bench/results/max-error-<timestamp>.md.
-// usage: node bench/max_error.mjs [--rel 1e-3] [--models a.off,b.obj] [--bin build/native/conformesh]
+// With --defaults, ours runs at the default options instead (the edge length drives), for the
+// count at equal accuracy at the defaults; the table goes to equal-hausdorff-<timestamp>.md.
+// usage: node bench/max_error.mjs [--rel 1e-3 | --defaults] [--models a.off,b.obj] [--bin build/native/conformesh]
 //   needs build/tools/meshq (bench/models.sh builds it) and bench/work/peers/cgal_remesh (bench/run.sh)
 import { execFileSync, spawnSync } from 'node:child_process';
 import { mkdirSync, readdirSync, readFileSync, writeFileSync } from 'node:fs';
@@ -18,6 +20,7 @@ const arg = (name, fallback) => {
   return i > 0 ? process.argv[i + 1] : fallback;
 };
 const REL = Number(arg('--rel', '1e-3'));
+const DEFAULTS = process.argv.includes('--defaults');
 const BIN = arg('--bin', path.join(ROOT, 'build/native/conformesh'));
 const MESHQ = path.join(ROOT, 'build/tools/meshq');
 const CGAL = path.join(ROOT, 'bench/work/peers/cgal_remesh');
@@ -36,7 +39,7 @@ for (const model of models) {
   const row = { model };
   const ours = path.join(WORK, `${base}-ours.obj`);
   const t0 = Date.now();
-  const r = spawnSync(BIN, ['remesh', input, '-o', ours, '--max-error-rel', String(REL), '--json'], { encoding: 'utf8', timeout: 600000 });
+  const r = spawnSync(BIN, ['remesh', input, '-o', ours, ...(DEFAULTS ? [] : ['--max-error-rel', String(REL)]), '--json'], { encoding: 'utf8', timeout: 600000 });
   row.oursSeconds = (Date.now() - t0) / 1000;
   let rep;
   try { rep = JSON.parse(r.stdout); } catch { rep = { error: { name: 'crash', message: r.stderr.slice(0, 200) } }; }
@@ -75,16 +78,16 @@ const ratios = rows.map(ratio).filter((x) => x);
 const geomean = ratios.length ? Math.exp(ratios.reduce((s, x) => s + Math.log(x), 0) / ratios.length) : NaN;
 const f = (x, d) => (x === undefined || x === null ? '' : typeof x === 'number' ? x.toFixed(d) : String(x));
 const lines = [
-  `# Error-driven remeshing at --max-error-rel ${REL} against CGAL isotropic remeshing at the same measured Hausdorff distance (${new Date().toISOString().slice(0, 10)}, ${BIN}, the tree at ${execFileSync('git', ['rev-parse', '--short', 'HEAD'], { cwd: ROOT, encoding: 'utf8' }).trim()} when written)`,
+  `# ${DEFAULTS ? 'Ours at the default options' : `Error-driven remeshing at --max-error-rel ${REL}`} against CGAL isotropic remeshing at the same measured Hausdorff distance (${new Date().toISOString().slice(0, 10)}, ${BIN}, the tree at ${execFileSync('git', ['rev-parse', '--short', 'HEAD'], { cwd: ROOT, encoding: 'utf8' }).trim()} when written)`,
   '',
   'Hausdorff distances (relative to the diagonal) and raw angles by meshq (../shared/tools/meshq.cpp); CGAL count interpolated in log-log between its runs bracketing our distance. Ours/CGAL geometric mean: ' + f(geomean, 3),
   '',
   '| model | ours: triangles | Hausdorff | ≤ bound | raw min ∠ | min ∠ outside exempt | below bound outside exempt | mean min ∠ | 60° kept % | attempts | s | CGAL triangles at our distance | ours / CGAL | CGAL raw min ∠ |',
   '|---|---|---|---|---|---|---|---|---|---|---|---|---|---|',
   ...rows.map((x) => x.error ? `| ${x.model} | ${x.error} |||||||||||||` :
-    `| ${x.model} | ${x.triangles} | ${x.hausdorff.toExponential(2)} | ${x.hausdorff <= REL ? 'yes' : '**no**'} | ${f(x.rawMin, 2)} | ${f(x.minOutsideExempt, 2)} | ${x.belowOutsideExempt} | ${f(x.meanMin, 2)} | ${f(x.kept60, 1)} | ${x.attempts} | ${f(x.oursSeconds, 1)} | ${x.cgalTriangles ?? (x.cgalTrianglesAtMost ? '≤ ' + x.cgalTrianglesAtMost : 'not bracketed')} | ${f(ratio(x), 2)} | ${f(x.cgalRuns[0]?.rawMin, 2)} |`),
+    `| ${x.model} | ${x.triangles} | ${x.hausdorff.toExponential(2)} | ${DEFAULTS ? '—' : x.hausdorff <= REL ? 'yes' : '**no**'} | ${f(x.rawMin, 2)} | ${f(x.minOutsideExempt, 2)} | ${x.belowOutsideExempt} | ${f(x.meanMin, 2)} | ${f(x.kept60, 1)} | ${x.attempts} | ${f(x.oursSeconds, 1)} | ${x.cgalTriangles ?? (x.cgalTrianglesAtMost ? '≤ ' + x.cgalTrianglesAtMost : 'not bracketed')} | ${f(ratio(x), 2)} | ${f(x.cgalRuns[0]?.rawMin, 2)} |`),
 ];
-const file = path.join(ROOT, 'bench/results', `max-error-${new Date().toISOString().replace(/[-:]/g, '').slice(0, 15)}.md`);
+const file = path.join(ROOT, 'bench/results', `${DEFAULTS ? 'equal-hausdorff' : 'max-error'}-${new Date().toISOString().replace(/[-:]/g, '').slice(0, 15)}.md`);
 writeFileSync(file, lines.join('\n') + '\n');
 console.log(lines.join('\n'));
 console.log(`written ${file}`);
