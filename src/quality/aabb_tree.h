@@ -14,9 +14,9 @@
 #include <utility>
 #include <vector>
 
-namespace conformesh::quality {
+#include "core/vec3.h"
 
-using Vec3 = std::array<double, 3>;
+namespace conformesh::quality {
 
 struct Box3 {
   Vec3 lo{std::numeric_limits<double>::infinity(), std::numeric_limits<double>::infinity(),
