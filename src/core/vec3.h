@@ -3,6 +3,8 @@
 #pragma once
 
 #include <cmath>
+#include <cstddef>
+#include <vector>
 
 namespace conformesh {
 
@@ -25,6 +27,8 @@ inline double dot(const Vec3& a, const Vec3& b) { return a.x * b.x + a.y * b.y +
 inline Vec3 cross(const Vec3& a, const Vec3& b) {
   return {a.y * b.z - a.z * b.y, a.z * b.x - a.x * b.z, a.x * b.y - a.y * b.x};
 }
+//! Point i of a flat array of 3·n coordinates (MeshBuffers::positions and the like).
+inline Vec3 vec3At(const std::vector<double>& xyz, size_t i) { return {xyz[3 * i], xyz[3 * i + 1], xyz[3 * i + 2]}; }
 //! Euclidean length (sqrt is correctly rounded on every target).
 inline double norm(const Vec3& a) { return std::sqrt(dot(a, a)); }
 

@@ -10,7 +10,7 @@ VertexData<Vec3> vertexPositions(const MeshBuffers& buffers) {
   const size_t n = buffers.vertexCount();
   VertexData<Vec3> p(n, Vec3{});
   for (size_t i = 0; i < n; ++i)
-    p.data()[i] = Vec3{buffers.positions[3 * i], buffers.positions[3 * i + 1], buffers.positions[3 * i + 2]};
+    p.data()[i] = vec3At(buffers.positions, i);
   return p;
 }
 

@@ -38,7 +38,7 @@ class Editor {
       if (ef_.count(edgeKey(e[0], e[1]))) prot_.insert(edgeKey(e[0], e[1]));
   }
 
-  Vec3 pos(uint32_t v) const { return {P_[3 * v], P_[3 * v + 1], P_[3 * v + 2]}; }
+  Vec3 pos(uint32_t v) const { return vec3At(P_, v); }
   double edgeLength(uint32_t a, uint32_t b) const { return norm(pos(a) - pos(b)); }
 
   // Split every edge longer than maxLen at its midpoint, longest first.

@@ -20,7 +20,7 @@ constexpr double kDeg = 180.0 / kPi;
 constexpr double kCreaseMidpointDeg = 20.0;
 
 inline Vec3 vertex(const MeshBuffers& m, uint32_t i) {
-  return {m.positions[3 * size_t(i)], m.positions[3 * size_t(i) + 1], m.positions[3 * size_t(i) + 2]};
+  return vec3At(m.positions, i);
 }
 
 //! Angle between u and v in radians, by atan2(|u×v|, u·v): accurate for needles too.

@@ -22,14 +22,13 @@ constexpr double kOnSurface = 1e-9;
 // face closest to the centroid is taken)
 constexpr size_t kMaxWalk = 4096;
 
-Vec3 point(const std::vector<double>& xyz, uint32_t i) { return {xyz[3 * size_t(i)], xyz[3 * size_t(i) + 1], xyz[3 * size_t(i) + 2]}; }
 
 
 // The closest point of input face f to p: its squared distance and barycentric coordinates;
 // false for a face with (numerically) zero area.
 bool closestOnFace(const MeshBuffers& m, uint32_t f, const Vec3& p, double& d2, double bary[3]) {
   const uint32_t* t = &m.triangles[3 * size_t(f)];
-  const Vec3 a = point(m.positions, t[0]), b = point(m.positions, t[1]), c = point(m.positions, t[2]);
+  const Vec3 a = vec3At(m.positions, t[0]), b = vec3At(m.positions, t[1]), c = vec3At(m.positions, t[2]);
   const Vec3 e0 = b - a, e1 = c - a;
   const double d00 = dot(e0, e0), d01 = dot(e0, e1), d11 = dot(e1, e1);
   const double den = d00 * d11 - d01 * d01;  // |e0 × e1|²
@@ -81,7 +80,7 @@ CornerPoints locateCorners(const MeshBuffers& input, const MeshBuffers& output, 
     int64_t hint = -1;
     std::vector<OnFace> here;
     for (size_t v = 0; v < output.vertexCount(); ++v) {
-      const Vec3 p = point(output.positions, uint32_t(v));
+      const Vec3 p = vec3At(output.positions, uint32_t(v));
       if (v < vertexHint.size() && vertexHint[v] < nIn) hint = vertexHint[v];
       const quality::ClosestHit h = dist.closest(p, hint);
       here.clear();

@@ -21,10 +21,7 @@ double triangleMinAngle(const MeshBuffers& m, size_t t) {
 
 bool minAngleBelow(const MeshBuffers& m, size_t t, double boundDeg, double cosBound) {
   Vec3 p[3];
-  for (int c = 0; c < 3; ++c) {
-    uint32_t v = m.triangles[3 * t + c];
-    p[c] = {m.positions[3 * v], m.positions[3 * v + 1], m.positions[3 * v + 2]};
-  }
+  for (int c = 0; c < 3; ++c) p[c] = vec3At(m.positions, m.triangles[3 * t + c]);
   constexpr double kApart = 1e-9;
   bool above = true;
   for (int c = 0; c < 3; ++c) {
@@ -92,7 +89,7 @@ uint32_t ExemptCorners::cornerOf(const MeshBuffers& out, size_t t) const {
   const uint32_t* tv = &out.triangles[3 * t];
   for (int c = 0; c < 3; ++c)
     if (vertex[tv[c]]) return tv[c];
-  auto pos = [&](uint32_t v) { return Vec3{out.positions[3 * v], out.positions[3 * v + 1], out.positions[3 * v + 2]}; };
+  auto pos = [&](uint32_t v) { return vec3At(out.positions, v); };
   for (int c = 0; c < 3; ++c) {
     const uint32_t a = tv[c], b = tv[(c + 1) % 3];
     if (a >= wedgeCurves.size() || b >= wedgeCurves.size()) continue;

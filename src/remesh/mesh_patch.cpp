@@ -103,7 +103,7 @@ double slabHalfWidth(const F::PatchMesh& pm) {
   const auto& P = pm.mesh.positions;
   const size_t nv = pm.mesh.vertexCount();
   if (nv == 0) return INFINITY;
-  const auto at = [&](uint32_t v) { return Vec3{P[3 * size_t(v)], P[3 * size_t(v) + 1], P[3 * size_t(v) + 2]}; };
+  const auto at = [&](uint32_t v) { return vec3At(P, v); };
   Vec3 n{0, 0, 0}, c{0, 0, 0};
   for (size_t t = 0; t < pm.mesh.triangleCount(); ++t) {
     const uint32_t* v = &pm.mesh.triangles[3 * t];

@@ -29,11 +29,6 @@ constexpr double kDeviationSlack = 0.05;
 // under this come closer to it (a squared deficit).
 constexpr double kRoomDeg = 40.0;
 
-Vec3 at(const MeshBuffers& m, uint32_t v) {
-  const double* p = &m.positions[3 * size_t(v)];
-  return {p[0], p[1], p[2]};
-}
-
 class Repairer {
  public:
   Repairer(MeshBuffers& out, std::vector<uint32_t>& vertexFace, const std::vector<uint32_t>& triPatch,
@@ -52,7 +47,7 @@ class Repairer {
     const uint32_t* s = &star_[start_[v]];
     const size_t n = start_[v + 1] - start_[v];
     if (n == 0) return false;
-    const Vec3 p0 = at(out_, v);
+    const Vec3 p0 = vec3At(out_.positions, v);
     std::vector<Vec3> normal0(n);
     double min0 = 180, shortest = INFINITY, dev0 = 0, deficit0 = 0;
     size_t below0 = 0;
@@ -105,7 +100,7 @@ class Repairer {
       for (size_t i = 0; i < n && !inStar; ++i) inStar = triPatch_[s[i]] == surfacePatch_[f];
       if (!inStar) continue;  // across a feature (or into a patch the star does not touch)
       const uint32_t* fv = &surface_.triangles[3 * size_t(f)];
-      const Vec3 p = quality::closestPointOnTriangle(c, at(surface_, fv[0]), at(surface_, fv[1]), at(surface_, fv[2]));
+      const Vec3 p = quality::closestPointOnTriangle(c, vec3At(surface_.positions, fv[0]), vec3At(surface_.positions, fv[1]), vec3At(surface_.positions, fv[2]));
       double mn = 180, deficit = 0;
       size_t below = 0;
       bool ok = true;
@@ -153,7 +148,7 @@ class Repairer {
   std::pair<Vec3, Vec3> rim(uint32_t t, uint32_t v) const {
     const uint32_t* c = &out_.triangles[3 * size_t(t)];
     const int k = cornerOf(c, v);
-    return {at(out_, c[(k + 1) % 3]), at(out_, c[(k + 2) % 3])};
+    return {vec3At(out_.positions, c[(k + 1) % 3]), vec3At(out_.positions, c[(k + 2) % 3])};
   }
   // Largest distance to the input from the centroid of triangle (p, a, b) and the midpoints of
   // its two edges at p (the third edge does not move).
