@@ -29,7 +29,8 @@ val pslgToJs(const planar::Pslg& p) {
 //!   -> {ok, value: {vertices, triangles, edges, edgeSegment, edgeMarker, vertexSegment,
 //!       vertexParam, minAngle, exemptTriangles, insertions, segmentSplits, rejected, seconds,
 //!       status, message}}
-//! IterationLimit (maxInsertions reached) is a result (`status`), not a failure.
+//! IterationLimit (maxInsertions reached) comes back as the value with its `status`; the facade
+//! throws it with the value attached (callRaw, bindings/src/raw.ts).
 val refine2dJs(val points, val segments, val segmentMarkers, val holes, val options, val progress) {
   return bindings::guarded(Stage::Refine, [&] {
     planar::Pslg pslg;

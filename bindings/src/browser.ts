@@ -10,26 +10,7 @@
 // Failures throw ConformeshError { code, value, stage, message }.
 import { bindApi, type Conformesh } from './api.js';
 import { loadRaw, type InitOptions } from './loader.js';
-import type { ProgressOptions } from './progress.js';
-import type {
-  FlattenOptions,
-  FlattenResult,
-  Pslg,
-  PslgLike,
-  Refine2dOptions,
-  Refine2dResult,
-  RemeshOptions,
-  RemeshResult,
-  MeshBytes,
-  MeshFormat,
-  MeshInfo,
-  MeshLike,
-  ReadMeshOptions,
-  ReadMeshResult,
-  ValidateOptions,
-  ValidateResult,
-  WriteMeshOptions,
-} from './types.js';
+import type { AsyncDirectMethods, MethodName } from './methods.js';
 
 export type { Conformesh } from './api.js';
 export type { InitOptions } from './loader.js';
@@ -66,45 +47,27 @@ export function init(options?: InitOptions): Promise<Conformesh> {
   return api;
 }
 
+/** The table's method `name` as an async function that loads the module on first use. */
+function lazy<K extends MethodName>(name: K): AsyncDirectMethods[K] {
+  return (async (...args: unknown[]) => ((await init())[name] as (...a: unknown[]) => unknown)(...args)) as AsyncDirectMethods[K];
+}
+
 /** Read a mesh file's bytes (OBJ, OFF, STL ascii/binary, PLY ascii/binary). */
-export async function readMesh(bytes: MeshBytes, format?: MeshFormat | 'auto' | ReadMeshOptions): Promise<ReadMeshResult> {
-  return (await init()).readMesh(bytes, format);
-}
-
+export const readMesh = lazy('readMesh');
 /** Write a mesh to file bytes. */
-export async function writeMesh(mesh: MeshLike, format: MeshFormat, options?: WriteMeshOptions): Promise<Uint8Array> {
-  return (await init()).writeMesh(mesh, format, options);
-}
-
+export const writeMesh = lazy('writeMesh');
 /** Topology report: vertices, faces, components, boundaryLoops, euler, genus, ... (never fails on non-manifold input). */
-export async function meshInfo(mesh: MeshLike, options?: Pick<ValidateOptions, 'maxVertices' | 'maxTriangles'>): Promise<MeshInfo> {
-  return (await init()).meshInfo(mesh, options);
-}
-
+export const meshInfo = lazy('meshInfo');
 /** Validate and repair a mesh (see ValidateOptions): the repaired mesh and what was done, or a ConformeshError. */
-export async function validateMesh(mesh: MeshLike, options?: ValidateOptions): Promise<ValidateResult> {
-  return (await init()).validateMesh(mesh, options);
-}
-
+export const validateMesh = lazy('validateMesh');
 /**
  * Quality triangulation of a planar straight-line graph (constrained Delaunay refinement; see
  * Refine2dOptions). `call`: { onProgress, signal } (runs on this thread; use createRemesher for workers).
  */
-export async function refine2d(pslg: PslgLike, options?: Refine2dOptions, call?: ProgressOptions): Promise<Refine2dResult> {
-  return (await init()).refine2d(pslg, options, call);
-}
-
+export const refine2d = lazy('refine2d');
 /** Parse a Triangle .poly file into a PSLG. */
-export async function readPoly(bytes: MeshBytes): Promise<Pslg> {
-  return (await init()).readPoly(bytes);
-}
-
+export const readPoly = lazy('readPoly');
 /** Conformal flattening of a disk-like patch: uv per vertex, conformal factor u, intrinsic layout, report. */
-export async function flatten(mesh: MeshLike, options?: FlattenOptions, call?: ProgressOptions): Promise<FlattenResult> {
-  return (await init()).flatten(mesh, options, call);
-}
-
+export const flatten = lazy('flatten');
 /** Remesh a surface: the new mesh and its quality report. */
-export async function remesh(mesh: MeshLike, options?: RemeshOptions, call?: ProgressOptions): Promise<RemeshResult> {
-  return (await init()).remesh(mesh, options, call);
-}
+export const remesh = lazy('remesh');

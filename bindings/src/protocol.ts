@@ -6,21 +6,12 @@
 //                     { id, type: 'error', error }               ConformeshErrorData
 // One call is in flight per worker at a time; cancel = terminate that worker (a running WASM
 // call cannot see messages), and the client starts a fresh one for the next call.
+import type { MethodName } from './methods.js';
 import type { StageName } from './stages.js';
 import type { ConformeshErrorData } from './status.js';
 
-/** Methods a worker serves (the names of the Conformesh API functions). */
-export type WorkerMethod =
-  | 'readMesh'
-  | 'writeMesh'
-  | 'meshInfo'
-  | 'validateMesh'
-  | 'refine2d'
-  | 'readPoly'
-  | 'flatten'
-  | 'remesh'
-  | 'version'
-  | 'threads';
+/** Methods a worker serves: the table's (methods.ts), and the module's version and threads. */
+export type WorkerMethod = MethodName | 'version' | 'threads';
 
 export interface InitRequest {
   id: number;

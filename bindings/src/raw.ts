@@ -123,7 +123,12 @@ export function callRaw<T>(raw: RawModule, name: string, stage: StageName, fn: (
     const message = e instanceof Error ? e.message : String(e);
     throw new ConformeshError('InternalError', stage, `${name}: unexpected exception in the WebAssembly module: ${message}`);
   }
-  if (result.ok) return result.value;
+  if (result.ok) {
+    // one error model: a value that carries a status other than Ok is thrown, the value attached
+    const v = result.value as { status?: unknown; message?: unknown } | null;
+    if (v === null || typeof v !== 'object' || typeof v.status !== 'string' || v.status === 'Ok') return result.value;
+    throw new ConformeshError(isErrorCode(v.status) ? v.status : 'InternalError', stage, String(v.message ?? ''), v as Refine2dResult);
+  }
   throw new ConformeshError(
     isErrorCode(result.name) ? result.name : 'InternalError',
     isStageName(result.stage) ? result.stage : stage,

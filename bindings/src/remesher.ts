@@ -4,28 +4,9 @@ import { threadsFor, wasmLocation } from './loader.js';
 import { platform } from './platform.js';
 import type { CallRequest, WorkerMethod, WorkerRequest, WorkerResponse } from './protocol.js';
 import { transferablesOf } from './protocol.js';
+import { METHOD_NAMES, METHODS, sendArgs, type MethodName, type WorkerMethods } from './methods.js';
 import type { StageName } from './stages.js';
 import { ConformeshError, invalidArgument } from './status.js';
-import type {
-  FlattenOptions,
-  FlattenResult,
-  Pslg,
-  PslgLike,
-  Refine2dOptions,
-  Refine2dResult,
-  RemeshOptions,
-  RemeshResult,
-  MeshBytes,
-  MeshFormat,
-  MeshInfo,
-  MeshLike,
-  ReadMeshOptions,
-  ReadMeshResult,
-  ValidateOptions,
-  ValidateResult,
-  WriteMeshOptions,
-} from './types.js';
-import { toBytes, toMesh, toPslg } from './api.js';
 
 /** A progress report: stage and fraction in [0, 1], monotone within a call, ending at 1. */
 export interface ProgressEvent {
@@ -75,17 +56,8 @@ export interface RemesherOptions {
  * The package API, asynchronous, running in workers. terminate() stops them (in Node, idle
  * workers do not keep the process alive; in browsers they live until terminate() or page unload).
  */
-export interface Remesher {
+export interface Remesher extends WorkerMethods<CallOptions> {
   readonly workers: number;
-  readMesh(bytes: MeshBytes, format?: MeshFormat | 'auto' | ReadMeshOptions, call?: CallOptions): Promise<ReadMeshResult>;
-  writeMesh(mesh: MeshLike, format: MeshFormat, options?: WriteMeshOptions, call?: CallOptions): Promise<Uint8Array>;
-  meshInfo(mesh: MeshLike, options?: Pick<ValidateOptions, 'maxVertices' | 'maxTriangles'>, call?: CallOptions): Promise<MeshInfo>;
-  validateMesh(mesh: MeshLike, options?: ValidateOptions, call?: CallOptions): Promise<ValidateResult>;
-  /** refine2d in a worker (progress and cancel through `call`). */
-  refine2d(pslg: PslgLike, options?: Refine2dOptions, call?: CallOptions): Promise<Refine2dResult>;
-  readPoly(bytes: MeshBytes, call?: CallOptions): Promise<Pslg>;
-  flatten(mesh: MeshLike, options?: FlattenOptions, call?: CallOptions): Promise<FlattenResult>;
-  remesh(mesh: MeshLike, options?: RemeshOptions, call?: CallOptions): Promise<RemeshResult>;
   version(): Promise<string>;
   /** Threads a call runs on in a worker (above 1 with the threaded build: cross-origin isolated pages). */
   threads(): Promise<number>;
@@ -108,13 +80,6 @@ interface Job {
 interface Slot {
   worker: Promise<WorkerLike> | undefined;
   job: Job | undefined;
-}
-
-/** Options as a structured-clone-safe plain object (own enumerable fields only). */
-function plainOptions<T extends object>(options: T | undefined): T | undefined {
-  if (options === undefined || options === null) return undefined;
-  if (typeof options !== 'object') throw invalidArgument('options must be an object');
-  return { ...options };
 }
 
 function cancelled(): ConformeshError {
@@ -291,25 +256,16 @@ export function createRemesher(options: RemesherOptions = {}): Remesher {
     });
   };
 
+  // each method of the table: its arguments checked and copied here, the call options last
+  const methods = {} as Record<MethodName, (...args: unknown[]) => Promise<unknown>>;
+  for (const name of METHOD_NAMES) {
+    const arity = METHODS[name].send.length;
+    methods[name] = async (...args) => submit(name, sendArgs(name, args), args[arity] as CallOptions | undefined);
+  }
+
   return {
     workers: count,
-    readMesh: async (bytes, format, call) => {
-      const data = toBytes(bytes);
-      return (await submit('readMesh', [data, format], call)) as ReadMeshResult;
-    },
-    writeMesh: async (mesh, format, options, call) =>
-      (await submit('writeMesh', [toMesh(mesh, 'write'), format, options], call)) as Uint8Array,
-    meshInfo: async (mesh, options, call) =>
-      (await submit('meshInfo', [toMesh(mesh, 'validate'), options], call)) as MeshInfo,
-    validateMesh: async (mesh, options, call) =>
-      (await submit('validateMesh', [toMesh(mesh, 'validate'), options], call)) as ValidateResult,
-    refine2d: async (pslg, options, call) =>
-      (await submit('refine2d', [toPslg(pslg), plainOptions(options)], call)) as Refine2dResult,
-    readPoly: async (bytes, call) => (await submit('readPoly', [toBytes(bytes)], call)) as Pslg,
-    flatten: async (mesh, options, call) =>
-      (await submit('flatten', [toMesh(mesh, 'flatten'), plainOptions(options)], call)) as FlattenResult,
-    remesh: async (mesh, options, call) =>
-      (await submit('remesh', [toMesh(mesh, 'api'), plainOptions(options)], call)) as RemeshResult,
+    ...(methods as WorkerMethods<CallOptions>),
     version: async () => (await submit('version', [])) as string,
     threads: async () => (await submit('threads', [])) as number,
     terminate: () => {

@@ -7,61 +7,37 @@ import type { CallRequest, PostFn, WorkerMethod, WorkerRequest } from './protoco
 import { transferablesOf } from './protocol.js';
 import type { StageName } from './stages.js';
 import { ConformeshError, type ConformeshErrorData } from './status.js';
-import type { MeshFormat, MeshInfo, ReadMeshResult } from './types.js';
+import { METHOD_NAMES, METHODS, type MethodName } from './methods.js';
 
 type MethodImpl = (api: Conformesh, args: unknown[], progress: (stage: StageName, fraction: number) => void) => unknown;
 
 /**
- * Each method: how a request's args map onto the synchronous API. Adding an API function to the
- * worker is one entry here plus one method in remesher.ts (docs/BINDINGS.md).
+ * A table method's call: its arguments (the row's arity), progress relayed when the row takes it,
+ * and a last report at 1 naming the stage of the last report made (else the row's stage).
  */
-const methods: Record<WorkerMethod, MethodImpl> = {
-  readMesh: (api, [bytes, format], progress) => {
-    const r: ReadMeshResult = api.readMesh(bytes as Uint8Array, format as MeshFormat);
-    progress('read', 1);
-    return r;
-  },
-  writeMesh: (api, [mesh, format, options], progress) => {
-    const r = api.writeMesh(mesh as never, format as MeshFormat, options as never);
-    progress('write', 1);
-    return r;
-  },
-  meshInfo: (api, [mesh, options], progress) => {
-    const r: MeshInfo = api.meshInfo(mesh as never, options as never);
-    progress('validate', 1);
-    return r;
-  },
-  validateMesh: (api, [mesh, options], progress) => {
-    const r = api.validateMesh(mesh as never, options as never);
-    progress('validate', 1);
-    return r;
-  },
-  refine2d: (api, [pslg, options], progress) => {
-    const r = api.refine2d(pslg as never, options as never, { onProgress: (e) => progress(e.stage, e.fraction) });
-    progress('refine', 1);
-    return r;
-  },
-  readPoly: (api, [bytes], progress) => {
-    const r = api.readPoly(bytes as Uint8Array);
-    progress('read', 1);
-    return r;
-  },
-  flatten: (api, [mesh, options], progress) => {
-    const r = api.flatten(mesh as never, options as never, { onProgress: (e) => progress(e.stage, e.fraction) });
-    progress('flatten', 1);
-    return r;
-  },
-  remesh: (api, [mesh, options], progress) => {
-    let stage: StageName = 'api';
-    const r = api.remesh(mesh as never, options as never, {
-      onProgress: (e) => {
-        stage = e.stage;
-        progress(e.stage, e.fraction);
-      },
-    });
+function tableMethod(name: MethodName): MethodImpl {
+  const row = METHODS[name];
+  const arity = row.send.length;
+  return (api, args, progress) => {
+    let stage: StageName = row.stage;
+    const call = row.progress
+      ? {
+          onProgress: (e: { stage: StageName; fraction: number }) => {
+            stage = e.stage;
+            progress(e.stage, e.fraction);
+          },
+        }
+      : undefined;
+    const fn = api[name] as (...a: unknown[]) => unknown;
+    const r = fn(...args.slice(0, arity), call);
     progress(stage, 1);
     return r;
-  },
+  };
+}
+
+/** What a worker serves: every method of the table, and the module's version and threads. */
+const methods: Record<WorkerMethod, MethodImpl> = {
+  ...(Object.fromEntries(METHOD_NAMES.map((name) => [name, tableMethod(name)])) as Record<MethodName, MethodImpl>),
   version: (api) => api.version,
   threads: (api) => api.threads,
 };

@@ -9,13 +9,13 @@
 
 #include "conformal/triangle_geometry.h"
 #include "core/detmath.h"
+#include "core/vec3.h"
 
 namespace conformesh::conformal {
 
 namespace {
 
 using IT = IntrinsicTriangulation;
-using Vec3 = std::array<double, 3>;
 
 [[noreturn]] void numerical(const std::string& msg) { fail(Code::NumericalFailure, Stage::Flatten, msg); }
 
@@ -70,7 +70,7 @@ __attribute__((noinline)) Vec3 mapLine(const Unfold& U, const Vec3& n) {
   m[U.td] = U.x * n[U.sa] + U.y * n[U.sb] + U.z * n[U.sc];
   const double s = std::max(std::fabs(m[0]), std::max(std::fabs(m[1]), std::fabs(m[2])));
   if (s > 0)
-    for (double& c : m) c /= s;
+    for (int k = 0; k < 3; ++k) m[k] /= s;
   return m;
 }
 
@@ -84,10 +84,6 @@ __attribute__((noinline)) Vec3 mapPoint(const Unfold& U, const Vec3& p) {
   return q;
 }
 
-Vec3 cross(const Vec3& a, const Vec3& b) {
-  return {a[1] * b[2] - a[2] * b[1], a[2] * b[0] - a[0] * b[2], a[0] * b[1] - a[1] * b[0]};
-}
-double dot(const Vec3& a, const Vec3& b) { return a[0] * b[0] + a[1] * b[1] + a[2] * b[2]; }
 
 bool invert3(const double m[9], double out[9]) {  // row-major
   const double c00 = m[4] * m[8] - m[5] * m[7], c01 = m[5] * m[6] - m[3] * m[8], c02 = m[3] * m[7] - m[4] * m[6];

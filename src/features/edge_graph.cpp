@@ -44,7 +44,7 @@ EdgeGraph buildEdgeGraph(const MeshBuffers& mesh) {
   g.faceCount = uint32_t(mesh.triangleCount());
   g.positions.resize(g.vertexCount);
   for (uint32_t v = 0; v < g.vertexCount; ++v)
-    g.positions[v] = {mesh.positions[3 * v], mesh.positions[3 * v + 1], mesh.positions[3 * v + 2]};
+    g.positions[v] = vec3At(mesh.positions, v);
   g.faces.resize(g.faceCount);
   struct HalfKey {
     uint64_t key;

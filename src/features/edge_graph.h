@@ -13,22 +13,12 @@
 
 #include "core/mesh_buffers.h"
 #include "core/detmath.h"
+#include "core/vec3.h"
 
 namespace conformesh::features {
 
 constexpr uint32_t kNone = 0xffffffffu;
 
-struct Vec3 {
-  double x = 0, y = 0, z = 0;
-  Vec3 operator+(const Vec3& o) const { return {x + o.x, y + o.y, z + o.z}; }
-  Vec3 operator-(const Vec3& o) const { return {x - o.x, y - o.y, z - o.z}; }
-  Vec3 operator*(double s) const { return {x * s, y * s, z * s}; }
-};
-inline double dot(const Vec3& a, const Vec3& b) { return a.x * b.x + a.y * b.y + a.z * b.z; }
-inline Vec3 cross(const Vec3& a, const Vec3& b) {
-  return {a.y * b.z - a.z * b.y, a.z * b.x - a.x * b.z, a.x * b.y - a.y * b.x};
-}
-inline double norm(const Vec3& a) { return std::sqrt(dot(a, a)); }
 //! Angle in radians between two vectors (0 for a zero vector).
 inline double angleBetween(const Vec3& a, const Vec3& b) {
   double c = norm(cross(a, b)), d = dot(a, b);

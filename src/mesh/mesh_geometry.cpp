@@ -8,15 +8,15 @@ namespace conformesh {
 
 VertexData<Vec3> vertexPositions(const MeshBuffers& buffers) {
   const size_t n = buffers.vertexCount();
-  VertexData<Vec3> p(n, Vec3::Zero());
+  VertexData<Vec3> p(n, Vec3{});
   for (size_t i = 0; i < n; ++i)
-    p.data()[i] = Vec3(buffers.positions[3 * i], buffers.positions[3 * i + 1], buffers.positions[3 * i + 2]);
+    p.data()[i] = vec3At(buffers.positions, i);
   return p;
 }
 
 Vec3 faceAreaNormal(const HalfedgeMesh& mesh, const VertexData<Vec3>& pos, FaceId f) {
   auto v = mesh.faceVertices(f);
-  return (pos[v[1]] - pos[v[0]]).cross(pos[v[2]] - pos[v[0]]);
+  return cross(pos[v[1]] - pos[v[0]], pos[v[2]] - pos[v[0]]);
 }
 
 // Three points are collinear exactly when their projections onto the three coordinate planes are

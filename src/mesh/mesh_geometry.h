@@ -2,15 +2,11 @@
 // queries need (face normal, edge vector, exact collinearity).
 #pragma once
 
-#include <Eigen/Core>
-#include <Eigen/Geometry>
-
 #include "core/mesh_buffers.h"
+#include "core/vec3.h"
 #include "mesh/halfedge_mesh.h"
 
 namespace conformesh {
-
-using Vec3 = Eigen::Vector3d;
 
 //! Vertex positions of `buffers` as VertexData (nV entries, same order).
 VertexData<Vec3> vertexPositions(const MeshBuffers& buffers);

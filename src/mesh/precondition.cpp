@@ -1,6 +1,7 @@
 #include "mesh/precondition.h"
 #include "core/constants.h"
 #include "core/detmath.h"
+#include "core/vec3.h"
 
 #include <algorithm>
 #include <cmath>
@@ -16,13 +17,6 @@ constexpr uint32_t kNo = 0xffffffffu;
 
 uint64_t edgeKey(uint32_t a, uint32_t b) { return a < b ? (uint64_t(a) << 32 | b) : (uint64_t(b) << 32 | a); }
 
-struct P3 {
-  double x, y, z;
-};
-P3 sub(const P3& a, const P3& b) { return {a.x - b.x, a.y - b.y, a.z - b.z}; }
-P3 cross(const P3& a, const P3& b) { return {a.y * b.z - a.z * b.y, a.z * b.x - a.x * b.z, a.x * b.y - a.y * b.x}; }
-double dot(const P3& a, const P3& b) { return a.x * b.x + a.y * b.y + a.z * b.z; }
-double len(const P3& a) { return std::sqrt(dot(a, a)); }
 
 class Editor {
  public:
@@ -44,8 +38,8 @@ class Editor {
       if (ef_.count(edgeKey(e[0], e[1]))) prot_.insert(edgeKey(e[0], e[1]));
   }
 
-  P3 pos(uint32_t v) const { return {P_[3 * v], P_[3 * v + 1], P_[3 * v + 2]}; }
-  double edgeLength(uint32_t a, uint32_t b) const { return len(sub(pos(a), pos(b))); }
+  Vec3 pos(uint32_t v) const { return vec3At(P_, v); }
+  double edgeLength(uint32_t a, uint32_t b) const { return norm(pos(a) - pos(b)); }
 
   // Split every edge longer than maxLen at its midpoint, longest first.
   void splitLong(double maxLen, size_t maxNew, Preconditioned& out) {
@@ -132,7 +126,7 @@ class Editor {
   uint32_t splitEdge(uint32_t a, uint32_t b) {
     const std::array<uint32_t, 2> fs = ef_.at(edgeKey(a, b));
     const uint32_t m = uint32_t(P_.size() / 3);
-    const P3 pa = pos(a), pb = pos(b);
+    const Vec3 pa = pos(a), pb = pos(b);
     P_.insert(P_.end(), {0.5 * (pa.x + pb.x), 0.5 * (pa.y + pb.y), 0.5 * (pa.z + pb.z)});
     parents_.push_back({a, b});
     if (prot_.erase(edgeKey(a, b))) {
@@ -174,17 +168,17 @@ class Editor {
     for (uint32_t x : T_[fs[1]])
       if (x != a && x != b) d = x;
     if (d == kNo || c == d || ef_.count(edgeKey(c, d))) return false;
-    const P3 pa = pos(a), pb = pos(b), pc = pos(c), pd = pos(d);
-    const P3 n0 = cross(sub(pb, pa), sub(pc, pa)), n1 = cross(sub(pa, pb), sub(pd, pb));
-    const double l0 = len(n0), l1 = len(n1);
+    const Vec3 pa = pos(a), pb = pos(b), pc = pos(c), pd = pos(d);
+    const Vec3 n0 = cross(pb - pa, pc - pa), n1 = cross(pa - pb, pd - pb);
+    const double l0 = norm(n0), l1 = norm(n1);
     if (!(l0 > 0 && l1 > 0) || 1.0 - dot(n0, n1) / (l0 * l1) > tol) return false;
-    auto angle = [](const P3& p, const P3& q, const P3& r) {  // at p
-      const P3 x = sub(q, p), y = sub(r, p);
-      return dmath::atan2(len(cross(x, y)), dot(x, y));
+    auto angle = [](const Vec3& p, const Vec3& q, const Vec3& r) {  // at p
+      const Vec3 x = q - p, y = r - p;
+      return dmath::atan2(norm(cross(x, y)), dot(x, y));
     };
     if (angle(pc, pa, pb) + angle(pd, pb, pa) <= kPi * (1 + 1e-12)) return false;
     // both new triangles keep the orientation (the quad is strictly convex at a and b)
-    const P3 m0 = cross(sub(pd, pa), sub(pc, pa)), m1 = cross(sub(pb, pd), sub(pc, pd));
+    const Vec3 m0 = cross(pd - pa, pc - pa), m1 = cross(pb - pd, pc - pd);
     const double eps = 1e-12 * l0;
     return dot(m0, n0) > eps * l0 && dot(m1, n0) > eps * l0;
   }

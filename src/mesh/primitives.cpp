@@ -1,11 +1,13 @@
 #include "mesh/primitives.h"
 #include "core/constants.h"
 #include "core/detmath.h"
+#include "core/vec3.h"
 
 #include <array>
 #include <cmath>
 #include <map>
 #include <string>
+#include <tuple>
 #include <unordered_map>
 
 namespace conformesh {
@@ -35,7 +37,7 @@ MeshBuffers periodicGrid(int ni, int nj, F position) {
   MeshBuffers m;
   for (int i = 0; i < ni; ++i)
     for (int j = 0; j < nj; ++j) {
-      std::array<double, 3> p = position(i, j);
+      const Vec3 p = position(i, j);
       addVertex(m, p[0], p[1], p[2]);
     }
   auto id = [&](int i, int j) { return uint32_t((i % ni) * nj + (j % nj)); };
@@ -91,7 +93,7 @@ MeshBuffers makeTorus(int nu, int nv, double R, double r) {
   checkArg(nu >= 3 && nv >= 3 && R > r && r > 0, "torus needs segments >= 3 and R > r > 0");
   return periodicGrid(nu, nv, [&](int i, int j) {
     double u = 2 * kPi * i / nu, v = 2 * kPi * j / nv;
-    return std::array<double, 3>{(R + r * dmath::cos(v)) * dmath::cos(u), (R + r * dmath::cos(v)) * dmath::sin(u), r * dmath::sin(v)};
+    return Vec3{(R + r * dmath::cos(v)) * dmath::cos(u), (R + r * dmath::cos(v)) * dmath::sin(u), r * dmath::sin(v)};
   });
 }
 
@@ -128,9 +130,11 @@ MeshBuffers makeAnnulus(int rings, int sectors, double r0, double r1) {
 MeshBuffers makeCube(int n, double h) {
   checkArg(n >= 1 && h > 0, "cube needs n >= 1 and halfSize > 0");
   MeshBuffers m;
-  std::map<std::array<double, 3>, uint32_t> index;  // welds the grid vertices shared by faces
+  // welds the grid vertices shared by faces (points ordered by x, then y, then z)
+  auto lexLess = [](const Vec3& a, const Vec3& b) { return std::tie(a.x, a.y, a.z) < std::tie(b.x, b.y, b.z); };
+  std::map<Vec3, uint32_t, decltype(lexLess)> index(lexLess);
   auto coord = [&](int i) { return -h + 2.0 * h * i / n; };
-  auto vertex = [&](std::array<double, 3> p) {
+  auto vertex = [&](const Vec3& p) {
     auto it = index.find(p);
     if (it != index.end()) return it->second;
     uint32_t v = addVertex(m, p[0], p[1], p[2]);
@@ -143,7 +147,7 @@ MeshBuffers makeCube(int n, double h) {
       int u = (axis + 1) % 3, w = (axis + 2) % 3;
       if (sign < 0) std::swap(u, w);
       auto point = [&](int i, int j) {
-        std::array<double, 3> p;
+        Vec3 p;
         p[axis] = sign * h;
         p[u] = coord(i);
         p[w] = coord(j);
@@ -177,7 +181,7 @@ MeshBuffers makeBoxWithHole(int n, double outer, double hole, double height) {
   return periodicGrid(4 * n, 4 * n, [&](int i, int j) {
     auto q = squarePoint(i);
     auto p = profilePoint(j);
-    return std::array<double, 3>{p[0] * q[0], p[0] * q[1], p[1]};
+    return Vec3{p[0] * q[0], p[0] * q[1], p[1]};
   });
 }
 

@@ -63,6 +63,11 @@ long genus(const HalfedgeMesh& mesh) {
   return (2 * c - eulerCharacteristic(mesh) - b) / 2;
 }
 
+namespace {
+// Summed as x + (y + z), Eigen's unvectorized order, so the angles keep their bits.
+double dotYzFirst(const Vec3& a, const Vec3& b) { return a.x * b.x + (a.y * b.y + a.z * b.z); }
+}  // namespace
+
 EdgeData<double> dihedralAngles(const HalfedgeMesh& mesh, const VertexData<Vec3>& pos) {
   EdgeData<double> angle(mesh, 0.0);
   for (EdgeId e : mesh.edges()) {
@@ -71,9 +76,9 @@ EdgeData<double> dihedralAngles(const HalfedgeMesh& mesh, const VertexData<Vec3>
     Vec3 n1 = faceAreaNormal(mesh, pos, mesh.face(h));
     Vec3 n2 = faceAreaNormal(mesh, pos, mesh.face(mesh.twin(h)));
     Vec3 d = edgeVector(mesh, pos, h);
-    double len = d.norm();
-    if (len == 0.0 || n1.squaredNorm() == 0.0 || n2.squaredNorm() == 0.0) continue;
-    angle[e] = dmath::atan2(n1.cross(n2).dot(d) / len, n1.dot(n2));
+    double len = std::sqrt(dotYzFirst(d, d));
+    if (len == 0.0 || dotYzFirst(n1, n1) == 0.0 || dotYzFirst(n2, n2) == 0.0) continue;
+    angle[e] = dmath::atan2(dotYzFirst(cross(n1, n2), d) / len, dotYzFirst(n1, n2));
   }
   return angle;
 }

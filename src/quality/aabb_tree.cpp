@@ -180,45 +180,40 @@ void AabbTree::buildMorton(uint32_t n, const std::function<Box3(uint32_t)>& boxO
   });
 }
 
-namespace {
-inline Vec3 sub(const Vec3& a, const Vec3& b) { return {a[0] - b[0], a[1] - b[1], a[2] - b[2]}; }
-inline double dot(const Vec3& a, const Vec3& b) { return a[0] * b[0] + a[1] * b[1] + a[2] * b[2]; }
-inline Vec3 madd(const Vec3& a, const Vec3& d, double t) { return {a[0] + t * d[0], a[1] + t * d[1], a[2] + t * d[2]}; }
-}  // namespace
 
 Vec3 closestPointOnSegment(const Vec3& p, const Vec3& a, const Vec3& b) {
-  Vec3 ab = sub(b, a);
+  Vec3 ab = b - a;
   double len2 = dot(ab, ab);
   if (!(len2 > 0)) return a;
-  double t = dot(sub(p, a), ab) / len2;
+  double t = dot(p - a, ab) / len2;
   t = t < 0 ? 0 : (t > 1 ? 1 : t);
-  return madd(a, ab, t);
+  return a + ab * t;
 }
 
 Vec3 closestPointOnTriangle(const Vec3& p, const Vec3& a, const Vec3& b, const Vec3& c) {
-  Vec3 ab = sub(b, a), ac = sub(c, a), ap = sub(p, a);
+  Vec3 ab = b - a, ac = c - a, ap = p - a;
   double d1 = dot(ab, ap), d2 = dot(ac, ap);
   if (d1 <= 0 && d2 <= 0) return a;
-  Vec3 bp = sub(p, b);
+  Vec3 bp = p - b;
   double d3 = dot(ab, bp), d4 = dot(ac, bp);
   if (d3 >= 0 && d4 <= d3) return b;
   double vc = d1 * d4 - d3 * d2;
   if (vc <= 0 && d1 >= 0 && d3 <= 0) {
     double den = d1 - d3;
-    return den > 0 ? madd(a, ab, d1 / den) : a;
+    return den > 0 ? a + ab * (d1 / den) : a;
   }
-  Vec3 cp = sub(p, c);
+  Vec3 cp = p - c;
   double d5 = dot(ab, cp), d6 = dot(ac, cp);
   if (d6 >= 0 && d5 <= d6) return c;
   double vb = d5 * d2 - d1 * d6;
   if (vb <= 0 && d2 >= 0 && d6 <= 0) {
     double den = d2 - d6;
-    return den > 0 ? madd(a, ac, d2 / den) : a;
+    return den > 0 ? a + ac * (d2 / den) : a;
   }
   double va = d3 * d6 - d5 * d4;
   if (va <= 0 && (d4 - d3) >= 0 && (d5 - d6) >= 0) {
     double den = (d4 - d3) + (d5 - d6);
-    return den > 0 ? madd(b, sub(c, b), (d4 - d3) / den) : b;
+    return den > 0 ? b + (c - b) * ((d4 - d3) / den) : b;
   }
   double den = va + vb + vc;
   // Zero (or non-finite) denominator: the triangle is degenerate; use its edges.

@@ -14,9 +14,9 @@
 #include <utility>
 #include <vector>
 
-namespace conformesh::quality {
+#include "core/vec3.h"
 
-using Vec3 = std::array<double, 3>;
+namespace conformesh::quality {
 
 struct Box3 {
   Vec3 lo{std::numeric_limits<double>::infinity(), std::numeric_limits<double>::infinity(),
@@ -207,8 +207,8 @@ Vec3 closestPointOnTriangle(const Vec3& p, const Vec3& a, const Vec3& b, const V
 Vec3 closestPointOnSegment(const Vec3& p, const Vec3& a, const Vec3& b);
 
 inline double distanceSquared(const Vec3& a, const Vec3& b) {
-  double x = a[0] - b[0], y = a[1] - b[1], z = a[2] - b[2];
-  return x * x + y * y + z * z;
+  const Vec3 d = a - b;
+  return dot(d, d);
 }
 
 }  // namespace conformesh::quality

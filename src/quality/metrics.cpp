@@ -20,14 +20,8 @@ constexpr double kDeg = 180.0 / kPi;
 constexpr double kCreaseMidpointDeg = 20.0;
 
 inline Vec3 vertex(const MeshBuffers& m, uint32_t i) {
-  return {m.positions[3 * size_t(i)], m.positions[3 * size_t(i) + 1], m.positions[3 * size_t(i) + 2]};
+  return vec3At(m.positions, i);
 }
-inline Vec3 sub(const Vec3& a, const Vec3& b) { return {a[0] - b[0], a[1] - b[1], a[2] - b[2]}; }
-inline double dot(const Vec3& a, const Vec3& b) { return a[0] * b[0] + a[1] * b[1] + a[2] * b[2]; }
-inline Vec3 cross(const Vec3& a, const Vec3& b) {
-  return {a[1] * b[2] - a[2] * b[1], a[2] * b[0] - a[0] * b[2], a[0] * b[1] - a[1] * b[0]};
-}
-inline double norm(const Vec3& a) { return std::sqrt(dot(a, a)); }
 
 //! Angle between u and v in radians, by atan2(|u×v|, u·v): accurate for needles too.
 inline double angleBetween(const Vec3& u, const Vec3& v) { return dmath::atan2(norm(cross(u, v)), dot(u, v)); }
@@ -85,7 +79,7 @@ bool oppositeSinCos(const MeshBuffers& m, const EdgeRef& r, double& sinA, double
   const uint32_t* t = &m.triangles[3 * size_t(r.face)];
   if (t[0] == t[1] || t[1] == t[2] || t[2] == t[0]) return false;
   const Vec3 o = vertex(m, t[r.corner]);
-  const Vec3 u = sub(vertex(m, t[(r.corner + 1) % 3]), o), v = sub(vertex(m, t[(r.corner + 2) % 3]), o);
+  const Vec3 u = vertex(m, t[(r.corner + 1) % 3]) - o, v = vertex(m, t[(r.corner + 2) % 3]) - o;
   const double lu = norm(u), lv = norm(v), cr = norm(cross(u, v));
   if (!(cr > 0) || !(lu > 0) || !(lv > 0) || !std::isfinite(cr)) return false;
   sinA = cr / (lu * lv);
@@ -99,14 +93,14 @@ bool oppositeSurelyNotObtuse(const MeshBuffers& m, const EdgeRef& r) {
   const uint32_t* t = &m.triangles[3 * size_t(r.face)];
   if (t[0] == t[1] || t[1] == t[2] || t[2] == t[0]) return false;
   const Vec3 o = vertex(m, t[r.corner]);
-  const Vec3 u = sub(vertex(m, t[(r.corner + 1) % 3]), o), v = sub(vertex(m, t[(r.corner + 2) % 3]), o);
+  const Vec3 u = vertex(m, t[(r.corner + 1) % 3]) - o, v = vertex(m, t[(r.corner + 2) % 3]) - o;
   const double uu = dot(u, u), vv = dot(v, v), cc = dot(cross(u, v), cross(u, v));
   return dot(u, v) >= 0 && uu >= 1e-200 && uu <= 1e200 && vv >= 1e-200 && vv <= 1e200 && cc > 0 && cc <= 1e300;
 }
 
 Vec3 faceNormal(const MeshBuffers& m, uint32_t f) {
   const uint32_t* t = &m.triangles[3 * size_t(f)];
-  Vec3 n = cross(sub(vertex(m, t[1]), vertex(m, t[0])), sub(vertex(m, t[2]), vertex(m, t[0])));
+  Vec3 n = cross(vertex(m, t[1]) - vertex(m, t[0]), vertex(m, t[2]) - vertex(m, t[0]));
   double l = norm(n);
   if (l > 0) n = {n[0] / l, n[1] / l, n[2] / l};
   return n;
@@ -244,8 +238,8 @@ bool minMaxAngle(const MeshBuffers& m, size_t f, double& mn, double& mx) {
   double cr[3], d[3], c[3];
   bool normal = true;  // side lengths far from under- and overflow: the cosines are accurate
   for (int k = 0; k < 3; ++k) {
-    u[k] = sub(p[(k + 1) % 3], p[k]);
-    v[k] = sub(p[(k + 2) % 3], p[k]);
+    u[k] = p[(k + 1) % 3] - p[k];
+    v[k] = p[(k + 2) % 3] - p[k];
     cr[k] = norm(cross(u[k], v[k]));
     d[k] = dot(u[k], v[k]);
     const double uu = dot(u[k], u[k]), vv = dot(v[k], v[k]);
@@ -321,7 +315,7 @@ EdgeStats edgeStatsOf(const MeshBuffers& mesh, const std::vector<EdgeRef>& refs)
   for (size_t i = 0; i < refs.size();) {
     size_t j = i;
     while (j < refs.size() && refs[j].a == refs[i].a && refs[j].b == refs[i].b) ++j;
-    double len = norm(sub(vertex(mesh, refs[i].a), vertex(mesh, refs[i].b)));
+    double len = norm(vertex(mesh, refs[i].a) - vertex(mesh, refs[i].b));
     ++s.edges;
     sum += len;
     s.minLength = std::min(s.minLength, len);
@@ -477,7 +471,7 @@ std::vector<Vec3> surfaceSamples(const MeshBuffers& m, size_t count, uint64_t se
     if (!triangleValid(m, f)) continue;
     const uint32_t* t = &m.triangles[3 * f];
     for (int k = 0; k < 3; ++k) used[t[k]] = 1;
-    double a = 0.5 * norm(cross(sub(vertex(m, t[1]), vertex(m, t[0])), sub(vertex(m, t[2]), vertex(m, t[0]))));
+    double a = 0.5 * norm(cross(vertex(m, t[1]) - vertex(m, t[0]), vertex(m, t[2]) - vertex(m, t[0])));
     if (std::isfinite(a)) area[f] = a;
     total += area[f];
   }

@@ -14,8 +14,6 @@ namespace conformesh {
 
 namespace {
 
-using quality::Vec3;
-
 constexpr uint32_t kNone = UINT32_MAX;
 // a point is on an input face when it is this close (relative to the input's bounding-box
 // diagonal) to it, no farther than from the closest face
@@ -24,27 +22,24 @@ constexpr double kOnSurface = 1e-9;
 // face closest to the centroid is taken)
 constexpr size_t kMaxWalk = 4096;
 
-Vec3 point(const std::vector<double>& xyz, uint32_t i) { return {xyz[3 * size_t(i)], xyz[3 * size_t(i) + 1], xyz[3 * size_t(i) + 2]}; }
 
-double dot(const Vec3& a, const Vec3& b) { return a[0] * b[0] + a[1] * b[1] + a[2] * b[2]; }
-Vec3 sub(const Vec3& a, const Vec3& b) { return {a[0] - b[0], a[1] - b[1], a[2] - b[2]}; }
 
 // The closest point of input face f to p: its squared distance and barycentric coordinates;
 // false for a face with (numerically) zero area.
 bool closestOnFace(const MeshBuffers& m, uint32_t f, const Vec3& p, double& d2, double bary[3]) {
   const uint32_t* t = &m.triangles[3 * size_t(f)];
-  const Vec3 a = point(m.positions, t[0]), b = point(m.positions, t[1]), c = point(m.positions, t[2]);
-  const Vec3 e0 = sub(b, a), e1 = sub(c, a);
+  const Vec3 a = vec3At(m.positions, t[0]), b = vec3At(m.positions, t[1]), c = vec3At(m.positions, t[2]);
+  const Vec3 e0 = b - a, e1 = c - a;
   const double d00 = dot(e0, e0), d01 = dot(e0, e1), d11 = dot(e1, e1);
   const double den = d00 * d11 - d01 * d01;  // |e0 × e1|²
   if (!(den > 1e-20 * d00 * d11)) return false;
   const Vec3 q = quality::closestPointOnTriangle(p, a, b, c);
-  const Vec3 w = sub(q, a);
+  const Vec3 w = q - a;
   const double d20 = dot(w, e0), d21 = dot(w, e1);
   bary[1] = (d11 * d20 - d01 * d21) / den;
   bary[2] = (d00 * d21 - d01 * d20) / den;
   bary[0] = 1.0 - bary[1] - bary[2];
-  const Vec3 r = sub(p, q);
+  const Vec3 r = p - q;
   d2 = dot(r, r);
   return true;
 }
@@ -85,7 +80,7 @@ CornerPoints locateCorners(const MeshBuffers& input, const MeshBuffers& output, 
     int64_t hint = -1;
     std::vector<OnFace> here;
     for (size_t v = 0; v < output.vertexCount(); ++v) {
-      const Vec3 p = point(output.positions, uint32_t(v));
+      const Vec3 p = vec3At(output.positions, uint32_t(v));
       if (v < vertexHint.size() && vertexHint[v] < nIn) hint = vertexHint[v];
       const quality::ClosestHit h = dist.closest(p, hint);
       here.clear();

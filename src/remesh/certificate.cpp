@@ -20,18 +20,15 @@ double triangleMinAngle(const MeshBuffers& m, size_t t) {
 }
 
 bool minAngleBelow(const MeshBuffers& m, size_t t, double boundDeg, double cosBound) {
-  F::Vec3 p[3];
-  for (int c = 0; c < 3; ++c) {
-    uint32_t v = m.triangles[3 * t + c];
-    p[c] = {m.positions[3 * v], m.positions[3 * v + 1], m.positions[3 * v + 2]};
-  }
+  Vec3 p[3];
+  for (int c = 0; c < 3; ++c) p[c] = vec3At(m.positions, m.triangles[3 * t + c]);
   constexpr double kApart = 1e-9;
   bool above = true;
   for (int c = 0; c < 3; ++c) {
-    const F::Vec3 u = p[(c + 1) % 3] - p[c], v = p[(c + 2) % 3] - p[c];
-    const double uu = F::dot(u, u), vv = F::dot(v, v);
+    const Vec3 u = p[(c + 1) % 3] - p[c], v = p[(c + 2) % 3] - p[c];
+    const double uu = dot(u, u), vv = dot(v, v);
     if (!(uu >= 1e-200 && uu <= 1e200 && vv >= 1e-200 && vv <= 1e200)) return triangleMinAngle(m, t) < boundDeg;
-    const double cosA = F::dot(u, v) / (std::sqrt(uu) * std::sqrt(vv));
+    const double cosA = dot(u, v) / (std::sqrt(uu) * std::sqrt(vv));
     if (cosA > cosBound + kApart) return true;
     above = above && cosA < cosBound - kApart;
   }
@@ -92,15 +89,15 @@ uint32_t ExemptCorners::cornerOf(const MeshBuffers& out, size_t t) const {
   const uint32_t* tv = &out.triangles[3 * t];
   for (int c = 0; c < 3; ++c)
     if (vertex[tv[c]]) return tv[c];
-  auto pos = [&](uint32_t v) { return F::Vec3{out.positions[3 * v], out.positions[3 * v + 1], out.positions[3 * v + 2]}; };
+  auto pos = [&](uint32_t v) { return vec3At(out.positions, v); };
   for (int c = 0; c < 3; ++c) {
     const uint32_t a = tv[c], b = tv[(c + 1) % 3];
     if (a >= wedgeCurves.size() || b >= wedgeCurves.size()) continue;
     for (const auto& [ca, cua] : wedgeCurves[a])
       for (const auto& [cb, cub] : wedgeCurves[b]) {
         if (ca != cb || cua == cub) continue;
-        const F::Vec3 p = pos(ca), da = pos(a) - p, db = pos(b) - p;
-        const double la = F::norm(da), lb = F::norm(db), seen = F::angleBetween(da, db) * 180.0 / kPi;
+        const Vec3 p = pos(ca), da = pos(a) - p, db = pos(b) - p;
+        const double la = norm(da), lb = norm(db), seen = F::angleBetween(da, db) * 180.0 / kPi;
         if (la <= 2 * lb && lb <= 2 * la && seen < boundDeg && seen >= 0.5 * wedgeDeg.at(ca)) return ca;
       }
   }

@@ -31,9 +31,7 @@ std::vector<double> cornerWedgeAngles(const F::PatchMesh& pm) {
     for (int c = 0; c < 3; ++c) {
       uint32_t v[3] = {pm.mesh.triangles[3 * f + c], pm.mesh.triangles[3 * f + (c + 1) % 3],
                        pm.mesh.triangles[3 * f + (c + 2) % 3]};
-      F::Vec3 p0{P[3 * v[0]], P[3 * v[0] + 1], P[3 * v[0] + 2]};
-      F::Vec3 p1{P[3 * v[1]], P[3 * v[1] + 1], P[3 * v[1] + 2]};
-      F::Vec3 p2{P[3 * v[2]], P[3 * v[2] + 1], P[3 * v[2] + 2]};
+      const Vec3 p0 = vec3At(P, v[0]), p1 = vec3At(P, v[1]), p2 = vec3At(P, v[2]);
       a[v[0]] += F::angleBetween(p1 - p0, p2 - p0);
     }
   return a;

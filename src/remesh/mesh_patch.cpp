@@ -103,19 +103,19 @@ double slabHalfWidth(const F::PatchMesh& pm) {
   const auto& P = pm.mesh.positions;
   const size_t nv = pm.mesh.vertexCount();
   if (nv == 0) return INFINITY;
-  const auto at = [&](uint32_t v) { return F::Vec3{P[3 * size_t(v)], P[3 * size_t(v) + 1], P[3 * size_t(v) + 2]}; };
-  F::Vec3 n{0, 0, 0}, c{0, 0, 0};
+  const auto at = [&](uint32_t v) { return vec3At(P, v); };
+  Vec3 n{0, 0, 0}, c{0, 0, 0};
   for (size_t t = 0; t < pm.mesh.triangleCount(); ++t) {
     const uint32_t* v = &pm.mesh.triangles[3 * t];
-    n = n + F::cross(at(v[1]) - at(v[0]), at(v[2]) - at(v[0]));
+    n = n + cross(at(v[1]) - at(v[0]), at(v[2]) - at(v[0]));
   }
   for (uint32_t v = 0; v < nv; ++v) c = c + at(v);
   c = c * (1.0 / double(nv));
-  const double ln = F::norm(n);
+  const double ln = norm(n);
   if (!(ln > 0)) return INFINITY;
   n = n * (1.0 / ln);
   double w = 0;
-  for (uint32_t v = 0; v < nv; ++v) w = std::max(w, std::abs(F::dot(n, at(v) - c)));
+  for (uint32_t v = 0; v < nv; ++v) w = std::max(w, std::abs(dot(n, at(v) - c)));
   return std::isfinite(w) ? w : INFINITY;
 }
 
@@ -315,7 +315,7 @@ bool refineAndLift(const Surface& surf, const RemeshOptions& opt, const Meshing&
   const Clock::time_point lifting = Clock::now();
   out.refineSeconds += secondsBetween(start, lifting);
   const size_t nv = pmsh.vertexCount();
-  out.interiorPositions.assign(nv, F::Vec3{});
+  out.interiorPositions.assign(nv, Vec3{});
   out.layoutFaces.assign(nv, -1);
   out.liftFaces.assign(nv, kNone);
   out.splits.clear();
@@ -446,7 +446,7 @@ OptimizeResult optimizeMesh(const Surface& surf, const RemeshOptions& opt, const
   w.optimized = true;
   if (!opt.optimize || opt.optimizeIterations == 0) return res;
   const size_t nv = w.planarPoints.size() / 2;
-  std::vector<F::Vec3> pos(nv);
+  std::vector<Vec3> pos(nv);
   std::vector<uint8_t> fixed(nv, 0);
   for (size_t v = 0; v < nv; ++v) {
     fixed[v] = w.localToGlobal[v] != kNone;
@@ -457,7 +457,7 @@ OptimizeResult optimizeMesh(const Surface& surf, const RemeshOptions& opt, const
   oo.maxIterations = opt.optimizeIterations;
   oo.tolerance = opt.optimizeTolerance;
   // per vertex: the layout face its latest lift landed in, where the next one starts looking
-  auto lift = [&](uint32_t v, double x, double y, F::Vec3& out) {
+  auto lift = [&](uint32_t v, double x, double y, Vec3& out) {
     PullbackPoint q;
     if (!liftPoint(w, x, y, q, w.layoutFaces[v])) return false;
     w.layoutFaces[v] = q.layoutFace;

@@ -33,7 +33,7 @@ struct PatchMeshing {
   std::vector<Split> splits;
   std::vector<double> planarPoints;
   std::vector<uint32_t> triangles;
-  std::vector<F::Vec3> interiorPositions;
+  std::vector<Vec3> interiorPositions;
   std::vector<int> layoutFaces;
   std::vector<uint32_t> liftFaces;
   double refineSeconds = 0, liftSeconds = 0;  //!< spent refining and lifting, on its thread

@@ -18,7 +18,6 @@ namespace {
 //! x² as one product (std::pow(x, 2) goes through libm in some builds).
 inline double sq(double x) { return x * x; }
 
-using features::Vec3;
 constexpr double kRadToDeg = 57.295779513082320876798;
 constexpr uint32_t kNoTri = 0xffffffffu;
 
@@ -38,9 +37,9 @@ struct Corner {
 // faster than with the two sides at that corner picked first; the same angles up to rounding).
 inline Corner smallestCorner(const Vec3& a, const Vec3& b, const Vec3& c) {
   const Vec3 ab = b - a, bc = c - b, ca = a - c;
-  const double lab = features::dot(ab, ab), lbc = features::dot(bc, bc), lca = features::dot(ca, ca);
+  const double lab = dot(ab, ab), lbc = dot(bc, bc), lca = dot(ca, ca);
   const double shortest = std::min(lab, std::min(lbc, lca));
-  return {features::norm(features::cross(ab, bc)), 0.5 * (lab + lbc + lca - 2 * shortest)};
+  return {norm(cross(ab, bc)), 0.5 * (lab + lbc + lca - 2 * shortest)};
 }
 
 double cornerDeg(const Corner& k) { return ((k.cr == 0 && k.dt == 0) ? 0.0 : dmath::atan2(k.cr, k.dt)) * kRadToDeg; }
@@ -126,9 +125,7 @@ bool contains(const Mesh& m, const uint32_t* t, const double* p) {
 }
 
 double distance2(const Mesh& m, const uint32_t* t, const Vec3& x) {
-  auto q = [](const Vec3& v) { return quality::Vec3{v.x, v.y, v.z}; };
-  const quality::Vec3 X = q(x);
-  return quality::distanceSquared(X, quality::closestPointOnTriangle(X, q(m.pos[t[0]]), q(m.pos[t[1]]), q(m.pos[t[2]])));
+  return quality::distanceSquared(x, quality::closestPointOnTriangle(x, m.pos[t[0]], m.pos[t[1]], m.pos[t[2]]));
 }
 
 // Sort the guard points pts into the triangles tris (ascending indices) that contain them; the
@@ -330,7 +327,7 @@ bool tryMove(Mesh& m, uint32_t v, double x, double y, const LiftFn& lift, double
   if (kept && m.guard) {
     const double ox = m.xy[2 * size_t(v)], oy = m.xy[2 * size_t(v) + 1];
     m.xy[2 * size_t(v)] = x, m.xy[2 * size_t(v) + 1] = y;
-    kept = guardAccepts(m, s, n, features::norm(P - keep));
+    kept = guardAccepts(m, s, n, norm(P - keep));
     m.xy[2 * size_t(v)] = ox, m.xy[2 * size_t(v) + 1] = oy;
   }
   if (!kept) {

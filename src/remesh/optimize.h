@@ -36,7 +36,7 @@ struct OptimizeStats {
 
 //! Lift a planar point to the surface; false when it is not in the flattened patch. v: the
 //! vertex being moved there (lets the lift start its point location where v's last lift landed).
-using LiftFn = std::function<bool(uint32_t v, double x, double y, features::Vec3& out)>;
+using LiftFn = std::function<bool(uint32_t v, double x, double y, Vec3& out)>;
 
 //! A guard: points of the input surface in the patch (e.g. its input vertices), planar (xy: 2 per
 //! point, in the patch's plane) and 3D (pos). When given, each point is kept listed in the output
@@ -49,7 +49,7 @@ using LiftFn = std::function<bool(uint32_t v, double x, double y, features::Vec3
 //! tracked.
 struct SurfaceSamples {
   std::vector<double> xy;
-  std::vector<features::Vec3> pos;
+  std::vector<Vec3> pos;
   double tolerance = 0;  //!< 3D length
 };
 
@@ -70,18 +70,18 @@ struct OptimizeCache {
   std::vector<uint32_t> guardHead, guardNext;
   std::vector<double> guardErr;
 };
-OptimizeStats optimizePatch(std::vector<double>& xy, std::vector<uint32_t>& triangles, std::vector<features::Vec3>& pos,
+OptimizeStats optimizePatch(std::vector<double>& xy, std::vector<uint32_t>& triangles, std::vector<Vec3>& pos,
                             const std::vector<uint8_t>& fixed, const LiftFn& lift, const OptimizeOptions& options,
                             const std::vector<uint8_t>& active = {}, const SurfaceSamples& guard = {},
                             OptimizeCache* cache = nullptr);
 
 //! Smallest angle of the 3D triangle (a, b, c), in degrees.
-double minAngleDeg3(const features::Vec3& a, const features::Vec3& b, const features::Vec3& c);
+double minAngleDeg3(const Vec3& a, const Vec3& b, const Vec3& c);
 
 //! minAngleDeg3 without atan2, within 1e-4 degrees of it (a polynomial arctangent; measured
 //! within 1.2e-6); 0 for a degenerate triangle, NaN when its three corners coincide. The optimizer ranks
 //! and decides its moves and flips by it, and takes minAngleDeg3 where the bound is at stake
 //! (within 1e-5 degrees of it).
-double minAngleDeg3Approx(const features::Vec3& a, const features::Vec3& b, const features::Vec3& c);
+double minAngleDeg3Approx(const Vec3& a, const Vec3& b, const Vec3& c);
 
 }  // namespace conformesh::optimization

@@ -89,7 +89,7 @@ struct PatchWork {
   std::vector<double> requiredPoints;  // planar points every refinement of the patch must contain
   // latest meshing
   std::vector<uint32_t> localToGlobal;  // planar vertex -> output vertex (samples first)
-  std::vector<F::Vec3> interiorPositions;  // positions of planar vertices that are interior
+  std::vector<Vec3> interiorPositions;  // positions of planar vertices that are interior
   std::vector<int> layoutFaces;             // per planar vertex: the flattened face of its lift, -1 none
   std::vector<uint32_t> liftFaces;          // per planar vertex: the input (g) face of its latest lift, kNone none
   optimization::OptimizeCache optimizeCache;  // the latest optimizePatch's, for the next one on this meshing

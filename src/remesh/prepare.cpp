@@ -64,10 +64,8 @@ Surface prepareSurface(ValidatedMesh vm, const MeshBuffers& input, const RemeshO
     target = opt.targetEdgeLength > 0 ? opt.targetEdgeLength : opt.targetEdgeLengthRel * diagonal;
     for (size_t f = 0; f < in.triangleCount(); ++f) {
       const uint32_t* t = &in.triangles[3 * f];
-      F::Vec3 a{in.positions[3 * t[0]], in.positions[3 * t[0] + 1], in.positions[3 * t[0] + 2]};
-      F::Vec3 b{in.positions[3 * t[1]], in.positions[3 * t[1] + 1], in.positions[3 * t[1] + 2]};
-      F::Vec3 c{in.positions[3 * t[2]], in.positions[3 * t[2] + 1], in.positions[3 * t[2] + 2]};
-      area += 0.5 * F::norm(F::cross(b - a, c - a));
+      Vec3 a = vec3At(in.positions, t[0]), b = vec3At(in.positions, t[1]), c = vec3At(in.positions, t[2]);
+      area += 0.5 * norm(cross(b - a, c - a));
     }
   }
   // over the limits already with the target alone: TooLarge before any heavy work

@@ -15,10 +15,6 @@
 namespace conformesh::repair {
 namespace {
 
-using features::Vec3;
-using features::cross;
-using features::dot;
-using features::norm;
 
 // A moved star triangle may turn by at most this against its own normal before the move: the
 // repair straightens a corner, it does not fold the surface.
@@ -32,13 +28,6 @@ constexpr double kDeviationSlack = 0.05;
 // Neighbours of a triangle below the bound make room for it by moving where their own angles
 // under this come closer to it (a squared deficit).
 constexpr double kRoomDeg = 40.0;
-
-Vec3 at(const MeshBuffers& m, uint32_t v) {
-  const double* p = &m.positions[3 * size_t(v)];
-  return {p[0], p[1], p[2]};
-}
-quality::Vec3 q3(const Vec3& v) { return {v.x, v.y, v.z}; }
-Vec3 f3(const quality::Vec3& v) { return {v[0], v[1], v[2]}; }
 
 class Repairer {
  public:
@@ -58,7 +47,7 @@ class Repairer {
     const uint32_t* s = &star_[start_[v]];
     const size_t n = start_[v + 1] - start_[v];
     if (n == 0) return false;
-    const Vec3 p0 = at(out_, v);
+    const Vec3 p0 = vec3At(out_.positions, v);
     std::vector<Vec3> normal0(n);
     double min0 = 180, shortest = INFINITY, dev0 = 0, deficit0 = 0;
     size_t below0 = 0;
@@ -104,14 +93,14 @@ class Repairer {
     Vec3 bestP{};
     int64_t bestFace = -1;
     for (const Vec3& c : cand) {
-      const quality::ClosestHit h = dist_.closest(q3(c), vertexFace_[v]);
+      const quality::ClosestHit h = dist_.closest(c, vertexFace_[v]);
       if (h.primitive < 0) continue;
       const uint32_t f = uint32_t(h.primitive);
       bool inStar = false;
       for (size_t i = 0; i < n && !inStar; ++i) inStar = triPatch_[s[i]] == surfacePatch_[f];
       if (!inStar) continue;  // across a feature (or into a patch the star does not touch)
       const uint32_t* fv = &surface_.triangles[3 * size_t(f)];
-      const Vec3 p = f3(quality::closestPointOnTriangle(q3(c), q3(at(surface_, fv[0])), q3(at(surface_, fv[1])), q3(at(surface_, fv[2]))));
+      const Vec3 p = quality::closestPointOnTriangle(c, vec3At(surface_.positions, fv[0]), vec3At(surface_.positions, fv[1]), vec3At(surface_.positions, fv[2]));
       double mn = 180, deficit = 0;
       size_t below = 0;
       bool ok = true;
@@ -159,14 +148,14 @@ class Repairer {
   std::pair<Vec3, Vec3> rim(uint32_t t, uint32_t v) const {
     const uint32_t* c = &out_.triangles[3 * size_t(t)];
     const int k = cornerOf(c, v);
-    return {at(out_, c[(k + 1) % 3]), at(out_, c[(k + 2) % 3])};
+    return {vec3At(out_.positions, c[(k + 1) % 3]), vec3At(out_.positions, c[(k + 2) % 3])};
   }
   // Largest distance to the input from the centroid of triangle (p, a, b) and the midpoints of
   // its two edges at p (the third edge does not move).
   double deviation(const Vec3& p, const Vec3& a, const Vec3& b) const {
     const Vec3 pts[3] = {(p + a + b) * (1.0 / 3.0), (p + a) * 0.5, (p + b) * 0.5};
     double d = 0;
-    for (const Vec3& x : pts) d = std::max(d, dist_.closest(q3(x)).distanceSquared);
+    for (const Vec3& x : pts) d = std::max(d, dist_.closest(x).distanceSquared);
     return std::sqrt(d);
   }
 

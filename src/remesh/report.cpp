@@ -159,7 +159,7 @@ Status reportOutput(const Surface& surf, const CurveSamples& cs, const MeshBuffe
       double worst = 0;
       int64_t hint = -1;  // consecutive output vertices are near each other (curves, then patches)
       for (size_t v = c * kDistanceChunk; v < std::min(nv, (c + 1) * kDistanceChunk); ++v) {
-        const quality::Vec3 p{out.positions[3 * v], out.positions[3 * v + 1], out.positions[3 * v + 2]};
+        const Vec3 p = vec3At(out.positions, v);
         // the input face the vertex was lifted onto (or one beside its curve sample) bounds its
         // distance: at most the worst so far, the vertex cannot change the maximum
         if (vertexFace[v] < in.triangleCount()) {

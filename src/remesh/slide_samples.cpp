@@ -28,7 +28,7 @@ std::vector<std::vector<uint8_t>> slideSamples(const Surface& surf, const Remesh
   };
   std::vector<Star> stars(work.size());
   std::vector<std::vector<Hold>> holds(nS);
-  auto pos3 = [&](const PatchWork& w, uint32_t v) -> const F::Vec3& {
+  auto pos3 = [&](const PatchWork& w, uint32_t v) -> const Vec3& {
     return w.localToGlobal[v] != kNone ? m.samples.cm.samples[w.localToGlobal[v]].position : w.interiorPositions[v];
   };
   for (uint32_t p = 0; p < work.size(); ++p) {
@@ -103,7 +103,7 @@ std::vector<std::vector<uint8_t>> slideSamples(const Surface& surf, const Remesh
           }
       }
       std::sort(nb.begin(), nb.end());
-      F::Vec3 mid{0, 0, 0};
+      Vec3 mid{0, 0, 0};
       uint32_t endSample[2] = {kNone, kNone};
       int ends = 0;
       for (size_t i = 0; i < nb.size(); ++i) {
@@ -127,27 +127,27 @@ std::vector<std::vector<uint8_t>> slideSamples(const Surface& surf, const Remesh
       const double kSelf = curveKey(surf, m.samples, cv, s);
       if (!(kPrev < kSelf && kSelf < kNext)) continue;
       const auto& cverts = surf.seg.curves[cv].vertices;
-      auto segDist = [](const F::Vec3& p, const F::Vec3& a, const F::Vec3& b) {
-        const F::Vec3 ab = b - a;
-        const double l = F::dot(ab, ab);
-        const double u = l > 0 ? std::clamp(F::dot(p - a, ab) / l, 0.0, 1.0) : 0.0;
-        return F::norm(p - (a + ab * u));
+      auto segDist = [](const Vec3& p, const Vec3& a, const Vec3& b) {
+        const Vec3 ab = b - a;
+        const double l = dot(ab, ab);
+        const double u = l > 0 ? std::clamp(dot(p - a, ab) / l, 0.0, 1.0) : 0.0;
+        return norm(p - (a + ab * u));
       };
-      auto deviation = [&](const F::Vec3& S, double kS) {
+      auto deviation = [&](const Vec3& S, double kS) {
         double d = 0;
         for (size_t i = size_t(std::floor(kPrev)) + 1; i < cverts.size() && double(i) < kNext; ++i) {
-          const F::Vec3& X = surf.g.positions[cverts[i]];
+          const Vec3& X = surf.g.positions[cverts[i]];
           d = std::max(d, double(i) < kS ? segDist(X, m.samples.cm.samples[endSample[0]].position, S) : segDist(X, S, m.samples.cm.samples[endSample[1]].position));
         }
         return d;
       };
       const double devOld = deviation(smp.position, kSelf);
-      const F::Vec3 A = surf.g.positions[surf.g.edgeVerts[e][0]], B = surf.g.positions[surf.g.edgeVerts[e][1]], AB = B - A;
-      const double l2 = F::dot(AB, AB);
+      const Vec3 A = surf.g.positions[surf.g.edgeVerts[e][0]], B = surf.g.positions[surf.g.edgeVerts[e][1]], AB = B - A;
+      const double l2 = dot(AB, AB);
       if (!(l2 > 0)) continue;
       // stay clear of the neighbouring samples on the edge by a tenth of the free interval
       const double margin = 0.1 * (hi - lo);
-      const double target = std::clamp(F::dot(mid - A, AB) / l2, lo + margin, hi - margin);
+      const double target = std::clamp(dot(mid - A, AB) / l2, lo + margin, hi - margin);
       // the loop halfedge of each hold: the one on edge e whose point at t is where the sample is
       loopK.assign(holds[s].size(), kNone);
       for (size_t i = 0; i < holds[s].size(); ++i) {
@@ -192,7 +192,7 @@ std::vector<std::vector<uint8_t>> slideSamples(const Surface& surf, const Remesh
       // (exact: with the exact angles; else with minAngleDeg3Approx, within 1e-4 degrees, to rank)
       auto evaluate = [&](double t, bool exact, double& newMin, double& newSum, std::vector<double>& angles, std::vector<std::array<double, 2>>& xy) {
         if (!(t > lo && t < hi) || t == smp.t) return false;
-        const F::Vec3 P = A * (1.0 - t) + B * t;
+        const Vec3 P = A * (1.0 - t) + B * t;
         if (deviation(P, kSelf) > devOld) return false;  // the side of each curve vertex does not change within the edge
         newMin = 180, newSum = 0;
         angles.clear();
@@ -204,7 +204,7 @@ std::vector<std::vector<uint8_t>> slideSamples(const Surface& surf, const Remesh
           for (uint32_t j = stars[hd.p].start[hd.v]; j < stars[hd.p].start[hd.v + 1]; ++j) {
             const uint32_t* tv = &w.triangles[3 * size_t(stars[hd.p].tri[j])];
             const double* c[3];
-            F::Vec3 q[3];
+            Vec3 q[3];
             for (int k = 0; k < 3; ++k) {
               c[k] = tv[k] == hd.v ? xy[i].data() : &w.planarPoints[2 * size_t(tv[k])];
               q[k] = tv[k] == hd.v ? P : pos3(w, tv[k]);
@@ -236,7 +236,7 @@ std::vector<std::vector<uint8_t>> slideSamples(const Surface& surf, const Remesh
       if (bestT < 0 || !evaluate(bestT, true, mn, sm, fresh, newXY)) continue;
       {
         const double t = bestT;
-        const F::Vec3 P = A * (1.0 - t) + B * t;
+        const Vec3 P = A * (1.0 - t) + B * t;
         smp.t = t;
         smp.position = P;
         size_t f = 0;

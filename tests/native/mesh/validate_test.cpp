@@ -184,7 +184,7 @@ TEST_CASE("unreferenced vertices are removed; maps and uvs follow") {
     uint32_t in = vm.vertexToInput[v];
     CHECK(vm.inputToVertex[in] == v);
     CHECK(vm.buffers.uvs[2 * v] == double(in));
-    CHECK(vm.positions[VertexId(v)].x() == m.positions[3 * in]);
+    CHECK(vm.positions[VertexId(v)].x == m.positions[3 * in]);
   }
   for (size_t f = 0; f < vm.buffers.triangleCount(); ++f)
     for (int i = 0; i < 3; ++i)

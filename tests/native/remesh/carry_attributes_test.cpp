@@ -27,7 +27,7 @@ const MeshAttribute* find(const MeshBuffers& m, const std::string& name) {
   return nullptr;
 }
 
-std::array<double, 3> P(const MeshBuffers& m, uint32_t v) {
+Vec3 P(const MeshBuffers& m, uint32_t v) {
   return {m.positions[3 * size_t(v)], m.positions[3 * size_t(v) + 1], m.positions[3 * size_t(v) + 2]};
 }
 
@@ -62,7 +62,7 @@ void checkCarried(const MeshBuffers& in, const RemeshResult& r) {
     REQUIRE(f < in.triangleCount());
     const double* b = &r.cornerBarycentric[3 * c];
     worstBary = std::max({worstBary, std::abs(b[0] + b[1] + b[2] - 1), -b[0], -b[1], -b[2]});
-    std::array<double, 3> p{0, 0, 0};
+    Vec3 p{0, 0, 0};
     double uv[2] = {0, 0};
     for (int k = 0; k < 3; ++k) {
       const auto x = P(in, in.triangles[3 * size_t(f) + k]);
@@ -105,7 +105,7 @@ void checkCarried(const MeshBuffers& in, const RemeshResult& r) {
       walked[e] = 1;
       const uint32_t w = seams[e][0] == v ? seams[e][1] : seams[e][0];
       const auto a = P(in, v), b = P(in, w);
-      const std::array<double, 3> d{b[0] - a[0], b[1] - a[1], b[2] - a[2]};
+      const Vec3 d{b[0] - a[0], b[1] - a[1], b[2] - a[2]};
       const double len2 = d[0] * d[0] + d[1] * d[1] + d[2] * d[2];
       std::vector<std::pair<double, uint32_t>> on;  // (parameter from v, output vertex)
       for (uint32_t o = 0; o < out.vertexCount(); ++o) {
@@ -276,7 +276,7 @@ TEST_CASE("carry attributes: spot.obj's texture coordinates, seams and all") {
   const MeshAttribute* inUv = find(in, "uv");
   double worst = 0;
   for (size_t t = 0; t < r.mesh.triangleCount(); ++t) {
-    std::array<double, 3> c{0, 0, 0};
+    Vec3 c{0, 0, 0};
     double mean[2] = {0, 0};
     for (int k = 0; k < 3; ++k) {
       const auto x = P(r.mesh, r.mesh.triangles[3 * t + k]);
@@ -286,9 +286,9 @@ TEST_CASE("carry attributes: spot.obj's texture coordinates, seams and all") {
     const uint32_t f = uint32_t(dist.closest(c).primitive);
     // the centroid's uv by the closest input face's affine map (barycentric in its plane)
     const auto a = P(in, in.triangles[3 * f]), b = P(in, in.triangles[3 * f + 1]), d = P(in, in.triangles[3 * f + 2]);
-    const std::array<double, 3> e0{b[0] - a[0], b[1] - a[1], b[2] - a[2]}, e1{d[0] - a[0], d[1] - a[1], d[2] - a[2]},
+    const Vec3 e0{b[0] - a[0], b[1] - a[1], b[2] - a[2]}, e1{d[0] - a[0], d[1] - a[1], d[2] - a[2]},
         w{c[0] - a[0], c[1] - a[1], c[2] - a[2]};
-    auto dot = [](const std::array<double, 3>& x, const std::array<double, 3>& y) { return x[0] * y[0] + x[1] * y[1] + x[2] * y[2]; };
+    auto dot = [](const Vec3& x, const Vec3& y) { return x[0] * y[0] + x[1] * y[1] + x[2] * y[2]; };
     const double d00 = dot(e0, e0), d01 = dot(e0, e1), d11 = dot(e1, e1), den = d00 * d11 - d01 * d01;
     const double l1 = (d11 * dot(w, e0) - d01 * dot(w, e1)) / den, l2 = (d00 * dot(w, e1) - d01 * dot(w, e0)) / den;
     for (int i = 0; i < 2; ++i) {

@@ -8,7 +8,6 @@
 #include "remesh/optimize.h"
 
 using namespace conformesh;
-using features::Vec3;
 
 namespace {
 // An n×n grid of the unit square, interior vertices jittered (deterministic), split into
@@ -170,7 +169,7 @@ double guardDistance(const std::vector<double>& xy, const std::vector<uint32_t>&
       for (int i = 0; i <= 60; ++i)
         for (int j = 0; i + j <= 60; ++j) {
           const Vec3 q = A * (1 - (i + j) / 60.0) + B * (i / 60.0) + C * (j / 60.0);
-          best = std::min(best, features::norm(q - g.pos[k]));
+          best = std::min(best, norm(q - g.pos[k]));
         }
       worst = std::max(worst, best);
       break;

@@ -7,7 +7,6 @@
 #include "remesh/repair.h"
 
 using namespace conformesh;
-using features::Vec3;
 
 namespace {
 // The square [-1, 1]² in the plane z = 0 as an n×n grid of cells, two triangles each.
