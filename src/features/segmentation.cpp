@@ -2,7 +2,6 @@
 #include "core/constants.h"
 #include "features/creases.h"
 #include "features/close_junctions.h"
-#include "features/merge_small_patches.h"
 #include "features/cut_junctions.h"
 #include "features/wedges.h"
 #include "core/detmath.h"
@@ -15,10 +14,6 @@
 
 namespace conformesh::features {
 namespace {
-
-// Patches cut out smaller than this many squared junction scales (about 9 equilateral output
-// triangles) are merged into a neighbour across a cut (features/merge_small_patches.h).
-constexpr double kSmallPatchArea = 4.0;
 
 // Geodesic Voronoi partition of the face set `region` (Dijkstra on the dual graph, centroid
 // distances, never crossing a curve edge) with farthest-point seeds, one seed at a time: the
@@ -496,7 +491,6 @@ Segmentation segment(const EdgeGraph& g, const FeatureOptions& options, const Pr
       fail(Code::Cancelled, Stage::Segment, "cancelled");
   }
   rebuildCurves(g, seg);
-  mergeSmallPatches(g, seg, kSmallPatchArea * seg.junctionScale * seg.junctionScale);
   improveCutJunctions(g, seg, seg.junctionScale);
   mergeCloseJunctions(g, seg, kCloseJunctionFactor * seg.junctionScale);
   straightenCutEars(g, seg);
