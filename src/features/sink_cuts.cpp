@@ -126,6 +126,7 @@ bool cutThroughSink(const EdgeGraph& g, Segmentation& seg, uint32_t p, uint32_t 
   if (second.size() < 2) return false;
 
   const std::vector<uint32_t> region = seg.patches[p];  // the cuts and their ends lie in it
+  const size_t patchesBefore = seg.patches.size();
   const std::vector<EdgeKind> before = seg.edgeKind;
   const uint32_t cutEdges = seg.cutEdgeCount;
   for (const auto* path : {&first, &second})
@@ -139,7 +140,7 @@ bool cutThroughSink(const EdgeGraph& g, Segmentation& seg, uint32_t p, uint32_t 
   improveCutJunctions(g, seg, seg.junctionScale, region);
   mergeCloseJunctions(g, seg, kCloseJunctionFactor * seg.junctionScale, region);
   straightenCutEars(g, seg, region, true);
-  bool ok = patchesOver(seg, region) >= 2;
+  bool ok = patchesOver(seg, region) >= 2 && seg.patches.size() > patchesBefore;
   if (ok) {
     const std::vector<uint8_t> mask = seg.curveMask();
     std::vector<uint32_t> parts;

@@ -26,7 +26,7 @@ namespace conformesh::features {
 //! keeps at least `minWedge` radians). The edges become Cut edges; the junction repairs of a
 //! split follow (features/cut_junctions.h, close_junctions.h), over the patch only. False, with
 //! the segmentation as it was, when there is no such pair of paths or the patch would not end
-//! up as two or more disks. O(patch) plus the rebuilds of the curves.
+//! up as two or more disks, or the segmentation with no more patches than before. O(patch) plus the rebuilds of the curves.
 bool cutThroughSink(const EdgeGraph& g, Segmentation& seg, uint32_t p, uint32_t sink, double minWedge);
 
 }  // namespace conformesh::features

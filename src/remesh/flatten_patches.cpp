@@ -7,6 +7,7 @@
 #include <cmath>
 #include <exception>
 #include <map>
+#include <set>
 #include <string>
 
 namespace conformesh::pipeline {
@@ -94,6 +95,29 @@ uint32_t scaleSink(const Surface& surf, const F::PatchMesh& pm, const std::vecto
   for (uint32_t k = surf.g.vertexEdgeStart[x]; k < surf.g.vertexEdgeStart[x + 1]; ++k)
     if (surf.seg.isCurveEdge(surf.g.vertexEdgeIds[k])) return kNone;
   return x;
+}
+
+// A hash of which input edges are curves of which kind (FNV-1a).
+uint64_t curveStateHash(const F::Segmentation& seg) {
+  uint64_t h = 1469598103934665603ull;
+  for (F::EdgeKind k : seg.edgeKind) h = (h ^ uint64_t(k)) * 1099511628211ull;
+  return h;
+}
+
+// splitPatch, but a split that leaves no more patches than before (its repairs gave a part to a
+// neighbour) and brings back a segmentation seen after such a split before is undone: the
+// patch's next split would trade the same faces back and forth without end. `lateral` keeps
+// the states those splits made.
+bool splitOnce(Surface& surf, uint32_t p, std::set<uint64_t>& lateral) {
+  const size_t before = surf.seg.patches.size();
+  const std::vector<F::EdgeKind> kinds = surf.seg.edgeKind;
+  const uint32_t cuts = surf.seg.cutEdgeCount;
+  if (!F::splitPatch(surf.g, surf.seg, p)) return false;
+  if (surf.seg.patches.size() > before || lateral.insert(curveStateHash(surf.seg)).second) return true;
+  surf.seg.edgeKind = kinds;
+  surf.seg.cutEdgeCount = cuts;
+  F::rebuildCurves(surf.g, surf.seg);
+  return false;
 }
 
 // Try the boundary conditions order[f.next...] on f.w->pm until one works; stop after a failure of
@@ -238,6 +262,7 @@ Patches flattenPatches(Surface& surf, const RemeshOptions& opt, const Progress& 
   // each round flattens what is new and splits at most one patch: the rounds are capped by the
   // patches the segmentation may make (a split that undoes another would otherwise cycle)
   const uint32_t maxPatches = F::FeatureOptions{}.maxPatches;
+  std::set<uint64_t> lateral;  // segmentations left by splits that made no more patches
   for (int round = 0;; ++round) {
     if (round > 64 + 2 * int(maxPatches) || surf.seg.patches.size() > maxPatches)
       fail(Code::IterationLimit, Stage::Flatten,
@@ -284,7 +309,7 @@ Patches flattenPatches(Surface& surf, const RemeshOptions& opt, const Progress& 
         }
         if (f.error) std::rethrow_exception(f.error);
         if (f.splitAsked) {
-          if (F::splitPatch(surf.g, surf.seg, p)) {
+          if (splitOnce(surf, p, lateral)) {
             ++rep.patchSplitsForScale;
             rep.warnings.push_back("patch split after its first boundary condition failed: " + f.lastError);
             split = true;
@@ -298,7 +323,7 @@ Patches flattenPatches(Surface& surf, const RemeshOptions& opt, const Progress& 
         if (!f.flattened) {
           // every boundary condition failed (a layout that overlaps itself or a flow that stalls):
           // split the patch and retry
-          if (faces.size() < kMinSplitFaces || !F::splitPatch(surf.g, surf.seg, p))
+          if (faces.size() < kMinSplitFaces || !splitOnce(surf, p, lateral))
             fail(Code::NumericalFailure, Stage::Flatten, "patch " + std::to_string(p) + " could not be flattened: " + f.lastError);
           ++rep.patchSplitsForScale;
           rep.warnings.push_back("patch split after a flattening failure: " + f.lastError);
@@ -314,7 +339,7 @@ Patches flattenPatches(Surface& surf, const RemeshOptions& opt, const Progress& 
           split = true;
           continue;
         }
-        if (f.scaleSplit && faces.size() >= kMinSplitFaces && F::splitPatch(surf.g, surf.seg, p)) {
+        if (f.scaleSplit && faces.size() >= kMinSplitFaces && splitOnce(surf, p, lateral)) {
           ++rep.patchSplitsForScale;
           split = true;
           continue;
