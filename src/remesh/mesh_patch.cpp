@@ -216,12 +216,13 @@ bool liftPoint(const PatchWork& w, double x, double y, PullbackPoint& q, int hin
 
 // RefineOptions::apexOf and chainOf for a patch's PSLG (its boundary points first, then
 // `points` in all): a boundary point on a curve that ends at an input corner below the bound
-// (Meshing::smallCorner) has that corner's boundary point as its apex and the curve as its chain.
-// The triangles across such a wedge are then left as it forces them, as the 3D certificate
+// (Meshing::smallCorner) has that corner's boundary point as its apex and the curve as its chain;
+// on a curve between two such corners, with `nearest` the corner nearer in the plane, else the one
+// at the curve's first end (which leaves the other wedge to the refinement). The triangles across such a wedge are then left as it forces them, as the 3D certificate
 // leaves them (certificate.h): refining them only splits the sides closer to the corner, and the
 // patches across take up each split, round after round.
 void cornerChains(const Surface& surf, const Meshing& m, const PatchWork& w, const std::vector<BoundaryPoint>& bp,
-                  size_t points, std::vector<uint32_t>& apexOf, std::vector<uint32_t>& chainOf) {
+                  size_t points, bool nearest, std::vector<uint32_t>& apexOf, std::vector<uint32_t>& chainOf) {
   apexOf.clear();
   chainOf.clear();
   const F::CurveMesh& cm = m.samples.cm;
@@ -245,12 +246,17 @@ void cornerChains(const Surface& surf, const Meshing& m, const PatchWork& w, con
     const uint32_t c = surf.seg.edgeCurve[surf.g.faceEdges[w.pm.faceInput[h.face]][h.corner]];
     if (c == kNone) continue;
     const auto& ids = cm.curveSamples[c];
+    double best = INFINITY;  // squared planar distance to the apex taken
     for (uint32_t end : {ids.front(), ids.back()}) {
       const auto it = std::find(apexSamples.begin(), apexSamples.end(), end);
       if (it == apexSamples.end()) continue;
-      apexOf[i] = apexPoint[size_t(it - apexSamples.begin())];
+      const uint32_t a = apexPoint[size_t(it - apexSamples.begin())];
+      const double d = sq(bp[a].x - bp[i].x) + sq(bp[a].y - bp[i].y);
+      if (!(d < best)) continue;
+      best = d;
+      apexOf[i] = a;
       chainOf[i] = c;
-      break;
+      if (!nearest) break;
     }
   }
 }
@@ -311,7 +317,10 @@ bool refineAndLift(const Surface& surf, const RemeshOptions& opt, const Meshing&
   double area3 = 0;
   for (uint32_t f : w.pm.faceInput) area3 += surf.g.faceArea(f);
   ro.maxInsertions = size_t(std::min(4e7, 50.0 * area3 / (surf.sizing.minLength * surf.sizing.minLength) + 1e5));
-  cornerChains(surf, m, w, bp, pslg.points.size() / 2, ro.apexOf, ro.chainOf);
+  // the nearer corner of a curve between two is the right one at any bound; at 30° and below the
+  // first one is kept for now, as their outputs are (the nearer one there: 5 models change, 7-10 %
+  // fewer triangles on 4, bench/results/deg35-2026-12-03.md)
+  cornerChains(surf, m, w, bp, pslg.points.size() / 2, opt.minAngle + kPlanarAngleMargin > kPlanarMaxDeg, ro.apexOf, ro.chainOf);
   planar::RefineResult rr;
   try {
     rr = planar::refinePslg(pslg, ro);
