@@ -292,7 +292,7 @@ export interface FlattenResult {
 
 /** Options of remesh (lengths absolute, angles in degrees). */
 export interface RemeshOptions {
-  /** Angle bound for every output triangle (3D), except at exempt corners; [0, 34], default 30. */
+  /** Angle bound for every output triangle (3D), except at exempt corners; [0, 35], default 30. */
   minAngle?: number;
   /** Target edge length (absolute); < 0 (default -1): targetEdgeLengthRel × bounding-box diagonal. */
   targetEdgeLength?: number;

@@ -46,8 +46,8 @@ inline bool parseBoundary(const std::string& s, Boundary& b) {
 // "" for an option only the library API has (it shapes the returned arrays, which the CLI does
 // not write).
 #define CONFORMESH_REMESH_OPTIONS(X)                                                                                    \
-  X(double, minAngle, 30.0, 0, 34, "--min-angle", "DEG",                                                                \
-    "angle bound of every triangle outside exempt input corners, degrees in [0, 34]")                                   \
+  X(double, minAngle, 30.0, 0, 35, "--min-angle", "DEG",                                                                \
+    "angle bound of every triangle outside exempt input corners, degrees in [0, 35]")                                   \
   X(double, targetEdgeLength, -1.0, -1e308, 1e308, "--edge-length", "L",                                                \
     "target edge length in flat regions (input units); < 0: --edge-length-rel")                                         \
   X(double, targetEdgeLengthRel, 0.01, 0, 1e308, "--edge-length-rel", "R",                                              \

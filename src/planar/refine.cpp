@@ -84,6 +84,9 @@ class Refiner {
     cos2Bound_ = dmath::cos(th) * dmath::cos(th) * (1.0 - 1e-9);
     lensCos2_ = angleOn_ && o.diametralLens ? dmath::cos(2 * th) * dmath::cos(2 * th) : 0.0;
     sin2Bound_ = dmath::sin(th) * dmath::sin(th);
+    const double ths = o.segmentTriangleMinAngleDeg * kPi / 180.0;
+    segBoundOn_ = angleOn_ && o.segmentTriangleMinAngleDeg > o.minAngleDeg;
+    cos2SegBound_ = segBoundOn_ ? dmath::cos(ths) * dmath::cos(ths) * (1.0 - 1e-9) : cos2Bound_;
     offK_ = (o.offcenters && angleOn_) ? o.offcenterFactor / (2.0 * dmath::tan(th / 2)) : INFINITY;
     sizeOn_ = o.maxArea > 0 || o.maxEdge > 0 || bool(o.sizing) || !o.vertexSizing.empty();
     if (!o.vertexSizing.empty()) {
@@ -205,8 +208,9 @@ class Refiner {
   CdtState& s_;
   Triangulation& T_;
   const RefineOptions& o_;
-  bool angleOn_, sizeOn_;
-  double cos2Bound_, sin2Bound_, offK_, minSeg2_;
+  bool angleOn_, sizeOn_, segBoundOn_;
+  double cos2Bound_, cos2SegBound_, sin2Bound_, offK_, minSeg2_;
+  std::vector<uint8_t> onSegment_;  // per input point: an end of a segment
   std::vector<double> vh_;
   BadQueue bad_;
   std::vector<std::pair<uint32_t, uint32_t>> enc_;
@@ -229,8 +233,11 @@ class Refiner {
     return dot * dot >= lensCos2_ * (ax * ax + ay * ay) * (bx * bx + by * by);
   }
 
+  // v lies on a segment: an input point that ends one, or a segment split
+  bool onSegment(uint32_t v) const { return v < s_.nInput ? onSegment_[v] != 0 : s_.vseg[v] >= 0; }
+
   // Input vertices where two segments meet at less than 90 degrees: segments ending there are
-  // split on concentric shells around them.
+  // split on concentric shells around them; and the input vertices on segments.
   void markAcuteVertices() {
     std::vector<std::vector<uint32_t>> nb(s_.nInput);
     for (const auto& kv : s_.subseg) {
@@ -239,7 +246,9 @@ class Refiner {
       nb[b].push_back(a);
     }
     acute_.assign(s_.nInput, 0);
+    onSegment_.assign(s_.nInput, 0);
     for (uint32_t v = 0; v < s_.nInput; ++v) {
+      onSegment_[v] = !nb[v].empty();
       const double* p = T_.pt(v);
       for (size_t i = 0; i < nb[v].size() && !acute_[v]; ++i) {
         for (size_t j = i + 1; j < nb[v].size(); ++j) {
@@ -329,7 +338,9 @@ class Refiner {
     double dot = ex[i] * ex[j] + ey[i] * ey[j];  // = -(u·w) for the corner vectors
     double cos2 = dot * dot / (l[i] * l[j]);
     int bucket = -1;
-    if (angleOn_ && dot < 0 && cos2 > cos2Bound_ && !exempt(t, s)) {
+    // a triangle with its three vertices on segments is judged by the higher bound when given
+    const bool onSegments = segBoundOn_ && onSegment(Tt.v[0]) && onSegment(Tt.v[1]) && onSegment(Tt.v[2]);
+    if (angleOn_ && dot < 0 && cos2 > (onSegments ? cos2SegBound_ : cos2Bound_) && !exempt(t, s)) {
       // Shortest edge first, in quarter-octave buckets of the squared length (relative to the
       // bounding box): refining the finest features first gives markedly fewer Steiner points
       // than worst-angle-first (measured on data/pslg; see bench/refine2d_bench.cpp).
@@ -594,6 +605,8 @@ RefineResult refinePslg(const Pslg& pslg, const RefineOptions& options) {
   if (!(options.maxArea >= 0) || !(options.maxEdge >= 0) || !std::isfinite(options.maxArea) ||
       !std::isfinite(options.maxEdge))
     fail(Code::InvalidArgument, Stage::Refine, "maxArea and maxEdge must be finite and >= 0");
+  if (!(options.segmentTriangleMinAngleDeg >= 0 && options.segmentTriangleMinAngleDeg <= 40.0))
+    fail(Code::InvalidArgument, Stage::Refine, "segmentTriangleMinAngleDeg must be in [0, 40]");
   if (!(options.offcenterFactor > 0 && options.offcenterFactor <= 0.99))
     fail(Code::InvalidArgument, Stage::Refine, "offcenterFactor must be in (0, 0.99]");
   if (!(options.minSegmentLength >= 0) || !std::isfinite(options.minSegmentLength))

@@ -19,6 +19,12 @@ struct RefineOptions {
   //! Angle bound θ in degrees: every triangle that is not exempt gets its smallest angle ≥ θ.
   //! Range [0, 34]; 0 switches the angle criterion off (size only).
   double minAngleDeg = 30.0;
+  //! A higher angle bound for the triangles whose three vertices lie on segments (ends of input
+  //! segments, or segment splits), for a caller that moves every other vertex afterwards (an
+  //! optimization can raise the other triangles, not these). Range [0, 40]; at or below
+  //! minAngleDeg it changes nothing. Such a triangle gets its circumcenter or off-center like any
+  //! bad triangle, which adds a free vertex (or splits the segments it would encroach upon).
+  double segmentTriangleMinAngleDeg = 0.0;
   //! Largest allowed triangle area (Triangle's -a). 0: no area bound.
   double maxArea = 0.0;
   //! Largest allowed edge length: a triangle is split while its longest edge exceeds

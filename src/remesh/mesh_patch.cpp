@@ -20,6 +20,14 @@ namespace {
 inline double sq(double x) { return x * x; }
 // Degrees added to the angle bound for the planar refinement (see meshPatch).
 constexpr double kPlanarAngleMargin = 2.0;
+// Highest bound of the planar refinement but for the triangles the optimization cannot move:
+// above it the off-center refinement's count grows steeply (camelhead at 34°: 1.76 times its
+// count at 32°), while the optimization lifts the other triangles to a higher 3D bound.
+constexpr double kPlanarMaxDeg = 32.0;
+// Passes of the optimization over the triangles below the bound when the planar refinement
+// gives them less than the bound and its margin (measured: a bound of 35 held on 3 more models
+// with them, in fewer certificate rounds).
+constexpr int kBoundPasses = 8;
 // Angle (degrees) at the new vertex of the triangle an off-center (Üngör 2009) makes with the
 // shortest edge of a bad triangle: halfway between the bound and equilateral, so graded bands do
 // not stay at the bound, while the new vertex stays 1.3 edges away and insertion radii still grow
@@ -208,12 +216,13 @@ bool liftPoint(const PatchWork& w, double x, double y, PullbackPoint& q, int hin
 
 // RefineOptions::apexOf and chainOf for a patch's PSLG (its boundary points first, then
 // `points` in all): a boundary point on a curve that ends at an input corner below the bound
-// (Meshing::smallCorner) has that corner's boundary point as its apex and the curve as its chain.
-// The triangles across such a wedge are then left as it forces them, as the 3D certificate
+// (Meshing::smallCorner) has that corner's boundary point as its apex and the curve as its chain;
+// on a curve between two such corners, with `nearest` the corner nearer in the plane, else the one
+// at the curve's first end (which leaves the other wedge to the refinement). The triangles across such a wedge are then left as it forces them, as the 3D certificate
 // leaves them (certificate.h): refining them only splits the sides closer to the corner, and the
 // patches across take up each split, round after round.
 void cornerChains(const Surface& surf, const Meshing& m, const PatchWork& w, const std::vector<BoundaryPoint>& bp,
-                  size_t points, std::vector<uint32_t>& apexOf, std::vector<uint32_t>& chainOf) {
+                  size_t points, bool nearest, std::vector<uint32_t>& apexOf, std::vector<uint32_t>& chainOf) {
   apexOf.clear();
   chainOf.clear();
   const F::CurveMesh& cm = m.samples.cm;
@@ -237,12 +246,17 @@ void cornerChains(const Surface& surf, const Meshing& m, const PatchWork& w, con
     const uint32_t c = surf.seg.edgeCurve[surf.g.faceEdges[w.pm.faceInput[h.face]][h.corner]];
     if (c == kNone) continue;
     const auto& ids = cm.curveSamples[c];
+    double best = INFINITY;  // squared planar distance to the apex taken
     for (uint32_t end : {ids.front(), ids.back()}) {
       const auto it = std::find(apexSamples.begin(), apexSamples.end(), end);
       if (it == apexSamples.end()) continue;
-      apexOf[i] = apexPoint[size_t(it - apexSamples.begin())];
+      const uint32_t a = apexPoint[size_t(it - apexSamples.begin())];
+      const double d = sq(bp[a].x - bp[i].x) + sq(bp[a].y - bp[i].y);
+      if (!(d < best)) continue;
+      best = d;
+      apexOf[i] = a;
       chainOf[i] = c;
-      break;
+      if (!nearest) break;
     }
   }
 }
@@ -263,7 +277,11 @@ bool refineAndLift(const Surface& surf, const RemeshOptions& opt, const Meshing&
   // models in ../shared/data with the free boundary).
   ro.diametralLens = true;
   ro.splitSegments = splitSegments;
-  ro.minAngleDeg = std::min(opt.minAngle + kPlanarAngleMargin, 34.0);
+  // Above kPlanarMaxDeg, the bound and its margin hold in the plane only for the triangles whose
+  // three vertices are boundary samples (RefineOptions::segmentTriangleMinAngleDeg), which the
+  // optimization cannot move; it lifts the others in 3D (optimizeMesh).
+  ro.minAngleDeg = std::min(opt.minAngle + kPlanarAngleMargin, kPlanarMaxDeg);
+  ro.segmentTriangleMinAngleDeg = opt.minAngle + kPlanarAngleMargin;
   // off-center factor for kOffcenterApexDeg: the off-center of factor f sits f / (2 tan(θ/2))
   // shortest-edge lengths from that edge, where it sees the edge under 2 atan(tan(θ/2) / f)
   // (refine.h); never above the planar default (bounds near 45° would otherwise get it)
@@ -299,7 +317,10 @@ bool refineAndLift(const Surface& surf, const RemeshOptions& opt, const Meshing&
   double area3 = 0;
   for (uint32_t f : w.pm.faceInput) area3 += surf.g.faceArea(f);
   ro.maxInsertions = size_t(std::min(4e7, 50.0 * area3 / (surf.sizing.minLength * surf.sizing.minLength) + 1e5));
-  cornerChains(surf, m, w, bp, pslg.points.size() / 2, ro.apexOf, ro.chainOf);
+  // the nearer corner of a curve between two is the right one at any bound; at 30° and below the
+  // first one is kept for now, as their outputs are (the nearer one there: 5 models change, 7-10 %
+  // fewer triangles on 4, bench/results/deg35-2026-12-03.md)
+  cornerChains(surf, m, w, bp, pslg.points.size() / 2, opt.minAngle + kPlanarAngleMargin > kPlanarMaxDeg, ro.apexOf, ro.chainOf);
   planar::RefineResult rr;
   try {
     rr = planar::refinePslg(pslg, ro);
@@ -456,6 +477,9 @@ OptimizeResult optimizeMesh(const Surface& surf, const RemeshOptions& opt, const
   oo.minAngleDeg = opt.minAngle;
   oo.maxIterations = opt.optimizeIterations;
   oo.tolerance = opt.optimizeTolerance;
+  // the planar refinement left the interior triangles below the bound and its margin: passes
+  // aimed at those still below the bound in 3D
+  if (opt.minAngle + kPlanarAngleMargin > kPlanarMaxDeg) oo.boundPasses = kBoundPasses;
   // per vertex: the layout face its latest lift landed in, where the next one starts looking
   auto lift = [&](uint32_t v, double x, double y, Vec3& out) {
     PullbackPoint q;

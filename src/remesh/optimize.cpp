@@ -384,6 +384,38 @@ bool equilateralTarget(const Mesh& m, uint32_t v, double out[2]) {
   return true;
 }
 
+// Move v to the first accepted candidate: the mean of the star's equilateral apexes, the ODT
+// position, then a half step toward the first (three lifts at most; others tried gained too
+// little for their cost: docs/decisions/0011). Each is computed only when the ones before it were
+// rejected: the first is taken about half the time. A star still under the bound then gets a
+// local search for a better min angle (8 directions, two step lengths relative to the star's
+// shortest edge at v). Returns whether v moved.
+bool improveVertex(Mesh& m, uint32_t v, const LiftFn& lift, double bound) {
+  std::vector<double>& xy = m.xy;
+  const double x = xy[2 * size_t(v)], y = xy[2 * size_t(v) + 1];
+  StarQuality q = starQuality(m, v);
+  double eq[2], t[2] = {x, y};
+  const bool eqOk = equilateralTarget(m, v, eq);
+  bool moved = eqOk && tryMove(m, v, eq[0], eq[1], lift, bound, q);
+  if (!moved && odtTarget(m, v, t)) moved = tryMove(m, v, t[0], t[1], lift, bound, q);
+  if (!moved && eqOk) moved = tryMove(m, v, 0.5 * (x + eq[0]), 0.5 * (y + eq[1]), lift, bound, q);
+  if (q.min < bound) {
+    double shortest = INFINITY;
+    for (uint32_t k = m.starStart[v]; k < m.starStart[v + 1]; ++k) {
+      const uint32_t* t3 = &m.tri[3 * size_t(m.starTri[k])];
+      for (int c = 0; c < 3; ++c)
+        if (t3[c] != v) shortest = std::min(shortest, dmath::hypot(m.p(t3[c])[0] - xy[2 * size_t(v)], m.p(t3[c])[1] - xy[2 * size_t(v) + 1]));
+    }
+    for (double step : {0.25, 0.1})
+      for (int d = 0; d < 8; ++d) {
+        const double a = d * 0.78539816339744830962;
+        const double cx = xy[2 * size_t(v)], cy = xy[2 * size_t(v) + 1];
+        moved = tryMove(m, v, cx + step * shortest * dmath::cos(a), cy + step * shortest * dmath::sin(a), lift, bound, q) || moved;
+      }
+  }
+  return moved;
+}
+
 // Flip guard: with t0 = (c0, x, c1) and t1 = (c1, y, c0) in place of the current two, would the
 // guard keep the flip? m is left as it was.
 bool guardAcceptsFlip(Mesh& m, uint32_t t0, uint32_t t1, uint32_t c0, uint32_t x, uint32_t c1, uint32_t y) {
@@ -572,34 +604,7 @@ OptimizeStats optimizePatch(std::vector<double>& xy, std::vector<uint32_t>& tria
     std::fill(nextActive.begin(), nextActive.end(), 0);
     for (uint32_t v = 0; v < nv; ++v) {
       if (fixed[v] || !active[v] || m.starStart[v] == m.starStart[v + 1]) continue;
-      const double x = xy[2 * size_t(v)], y = xy[2 * size_t(v) + 1];
-      StarQuality q = starQuality(m, v);
-      // candidates, the first accepted wins: the mean of the star's equilateral apexes, the ODT
-      // position, then a half step toward the first (three lifts at most; others tried gained
-      // too little for their cost: docs/decisions/0011). Each is computed only when the ones
-      // before it were rejected: the first is taken about half the time.
-      double eq[2], t[2] = {x, y};
-      const bool eqOk = equilateralTarget(m, v, eq);
-      bool moved = eqOk && tryMove(m, v, eq[0], eq[1], lift, o.minAngleDeg, q);
-      if (!moved && odtTarget(m, v, t)) moved = tryMove(m, v, t[0], t[1], lift, o.minAngleDeg, q);
-      if (!moved && eqOk) moved = tryMove(m, v, 0.5 * (x + eq[0]), 0.5 * (y + eq[1]), lift, o.minAngleDeg, q);
-      // a star still under the bound: a local search for a better min angle (8 directions, two
-      // step lengths relative to the star's shortest edge at v)
-      if (q.min < o.minAngleDeg) {
-        double shortest = INFINITY;
-        for (uint32_t k = m.starStart[v]; k < m.starStart[v + 1]; ++k) {
-          const uint32_t* t3 = &m.tri[3 * size_t(m.starTri[k])];
-          for (int c = 0; c < 3; ++c)
-            if (t3[c] != v) shortest = std::min(shortest, dmath::hypot(m.p(t3[c])[0] - xy[2 * size_t(v)], m.p(t3[c])[1] - xy[2 * size_t(v) + 1]));
-        }
-        for (double step : {0.25, 0.1})
-          for (int d = 0; d < 8; ++d) {
-            const double a = d * 0.78539816339744830962;
-            const double cx = xy[2 * size_t(v)], cy = xy[2 * size_t(v) + 1];
-            moved = tryMove(m, v, cx + step * shortest * dmath::cos(a), cy + step * shortest * dmath::sin(a), lift, o.minAngleDeg, q) || moved;
-          }
-      }
-      if (!moved) continue;
+      if (!improveVertex(m, v, lift, o.minAngleDeg)) continue;
       ++st.moves;
       for (uint32_t k = m.starStart[v]; k < m.starStart[v + 1]; ++k)
         for (int c = 0; c < 3; ++c) nextActive[m.tri[3 * size_t(m.starTri[k]) + c]] = 1;
@@ -618,6 +623,35 @@ OptimizeStats optimizePatch(std::vector<double>& xy, std::vector<uint32_t>& tria
     st.meanMinAngleAfter = now;
     if (now - last < o.tolerance * std::max(last, 1e-9)) break;
     last = now;
+  }
+  // passes aimed at the bound: the vertices of the triangles still below it, until none is left
+  // or nothing moves or flips (the passes above stop on the mean's gain, while a few triangles
+  // below the bound barely move the mean)
+  for (int it = 0; it < o.boundPasses; ++it) {
+    if (flips > 0) m.buildStars();
+    std::fill(active.begin(), active.end(), 0);
+    size_t bad = 0;
+    for (size_t t = 0; t < nt; ++t)
+      if (m.minAngle[t] < o.minAngleDeg) {
+        ++bad;
+        for (int c = 0; c < 3; ++c) active[triangles[3 * t + c]] = 1;
+      }
+    if (bad == 0) break;
+    std::fill(nextActive.begin(), nextActive.end(), 0);
+    size_t moves = 0;
+    for (uint32_t v = 0; v < nv; ++v) {
+      if (fixed[v] || !active[v] || m.starStart[v] == m.starStart[v + 1]) continue;
+      if (!improveVertex(m, v, lift, o.minAngleDeg)) continue;
+      ++moves;
+      for (uint32_t k = m.starStart[v]; k < m.starStart[v + 1]; ++k)
+        for (int c = 0; c < 3; ++c) nextActive[m.tri[3 * size_t(m.starTri[k]) + c]] = 1;
+    }
+    for (size_t v = 0; v < nv; ++v) changed[v] = active[v] | nextActive[v];
+    flips = flipPass(m, nextActive, changed, o.minAngleDeg);
+    st.moves += moves;
+    st.flips += flips;
+    st.meanMinAngleAfter = meanMin(m);
+    if (moves == 0 && flips == 0) break;
   }
   if (cache) {
     cache->minAngle.swap(m.minAngle);

@@ -26,6 +26,11 @@ struct OptimizeOptions {
   int maxIterations = 2;      //!< passes over all vertices and edges (hard cap)
   //! Stop when a pass raises the sum of per-triangle 3D min angles by less than this fraction.
   double tolerance = 1e-3;
+  //! Passes after those, over the vertices of the triangles below the bound only, as the minimal
+  //! angle improvement of Hu, Yan, Bommes, Alliez and Benes (IEEE TVCG 2017) works where the
+  //! angle is below the bound (a hard cap; they stop when none is left or nothing moves or
+  //! flips). 0: none.
+  int boundPasses = 0;
 };
 
 struct OptimizeStats {

@@ -26,8 +26,8 @@ constexpr double kErrorDrivenMaxSizeRel = 0.1;
 }  // namespace
 
 void checkOptions(const RemeshOptions& opt) {
-  if (!(opt.minAngle >= 0 && opt.minAngle <= 34))
-    fail(Code::InvalidArgument, Stage::Api, "minAngle must be in [0, 34] degrees");
+  if (!(opt.minAngle >= 0 && opt.minAngle <= 35))
+    fail(Code::InvalidArgument, Stage::Api, "minAngle must be in [0, 35] degrees");
   if (!(opt.maxScaleRatio > 1)) fail(Code::InvalidArgument, Stage::Api, "maxScaleRatio must be > 1");
   if (opt.optimizeIterations < 0 || opt.optimizeIterations > 1000)
     fail(Code::InvalidArgument, Stage::Api, "optimizeIterations must be in [0, 1000]");

@@ -52,6 +52,59 @@ TEST_CASE("refinement of the data PSLGs meets the angle bound at 20.7, 26, 30, 3
   }
 }
 
+// Triangles whose three vertices lie on segments (ends of constrained edges), and how many of
+// them have a smaller angle than theta.
+size_t segmentTrianglesBelow(const PlanarMesh& m, double theta, size_t* total = nullptr) {
+  std::vector<uint8_t> on(m.vertexCount(), 0);
+  for (size_t e = 0; e < m.edgeSegment.size(); ++e)
+    if (m.edgeSegment[e] >= 0) on[m.edges[2 * e]] = on[m.edges[2 * e + 1]] = 1;
+  size_t below = 0, n = 0;
+  for (size_t t = 0; t < m.triangleCount(); ++t) {
+    const uint32_t* v = &m.triangles[3 * t];
+    if (!(on[v[0]] && on[v[1]] && on[v[2]])) continue;
+    ++n;
+    if (triMinAngleDeg(P(m, v[0]), P(m, v[1]), P(m, v[2])) < theta) ++below;
+  }
+  if (total) *total = n;
+  return below;
+}
+
+// A strip between two sampled sides, the samples of one side halfway between those of the other:
+// triangles across it have their three vertices on segments and a smallest angle of ~33 degrees.
+Pslg sampledStrip() {
+  Pslg in;
+  const double h = 0.081, b = 0.25;
+  for (int i = 0; i <= 16; ++i) in.points.insert(in.points.end(), {i * b, 0});
+  in.points.insert(in.points.end(), {4, h});
+  for (int i = 15; i >= 0; --i) in.points.insert(in.points.end(), {(i + 0.5) * b, h});
+  in.points.insert(in.points.end(), {0, h});
+  const uint32_t n = uint32_t(in.points.size() / 2);
+  for (uint32_t v = 0; v < n; ++v) in.segments.insert(in.segments.end(), {v, (v + 1) % n});
+  return in;
+}
+
+TEST_CASE("segment triangles: a higher bound for the triangles with their three vertices on segments") {
+  const Pslg in = sampledStrip();
+  RefineOptions o;
+  o.minAngleDeg = 30;
+  o.diametralLens = true;  // circles would split the sides: no triangle would span the strip
+  const RefineResult plain = refinePslg(in, o);
+  size_t total = 0;
+  // without the option most of them are between the two bounds: the test can tell
+  CHECK(segmentTrianglesBelow(plain.mesh, 37.0, &total) > plain.exemptTriangles + 10);
+  o.segmentTriangleMinAngleDeg = 37;
+  const RefineResult r = refinePslg(in, o);
+  CHECK(r.status.ok());
+  const MeshCheck c = checkMesh(r.mesh, in, true);
+  CHECK(c.inverted == 0);
+  CHECK(c.notDelaunay == 0);
+  CHECK(c.segmentsBroken == 0);
+  CHECK(c.paramOff == 0);
+  CHECK(r.minAngleDeg >= 30.0);
+  CHECK(segmentTrianglesBelow(r.mesh, 37.0) <= r.exemptTriangles);
+  MESSAGE("strip: " << plain.mesh.triangleCount() << " -> " << r.mesh.triangleCount() << " triangles");
+}
+
 TEST_CASE("Steiner economy: wiggly5000 at 30 degrees, no size bound, at most 52,000 triangles") {
   RefineResult r = refinePslg(loadPoly("wiggly5000"));
   CHECK(r.mesh.triangleCount() <= 52000);
@@ -138,9 +191,10 @@ TEST_CASE("insertion cap, cancel and bad options") {
   }
   CHECK(code == Code::Cancelled);
 
-  for (double bad : {-1.0, 35.0, std::nan("")}) {
+  for (double bad : {-1.0, 35.0, std::nan(""), -2.0, 41.0}) {
     RefineOptions b;
     b.minAngleDeg = bad;
+    if (bad == -2.0 || bad == 41.0) b.minAngleDeg = 30, b.segmentTriangleMinAngleDeg = bad;  // its range is [0, 40]
     Code k = Code::Ok;
     try {
       refinePslg(in, b);
