@@ -85,16 +85,12 @@ struct Flattening {
   std::string lastError;
 };
 
-// The input vertex of patch mesh pm where the scale u (per vertex of pm) is smallest, off every
-// curve; kNone when that vertex is on one (the conditions other than the free one move the
+// The input vertex of patch mesh pm where the scale u (per vertex of pm) is smallest (kNone for
+// no u); cutThroughSink refuses one on a curve (the conditions other than the free one move the
 // border's scale).
-uint32_t scaleSink(const Surface& surf, const F::PatchMesh& pm, const std::vector<double>& u) {
+uint32_t scaleSink(const F::PatchMesh& pm, const std::vector<double>& u) {
   if (u.size() != pm.vertexInput.size() || u.empty()) return kNone;
-  const size_t v = size_t(std::min_element(u.begin(), u.end()) - u.begin());
-  const uint32_t x = pm.vertexInput[v];
-  for (uint32_t k = surf.g.vertexEdgeStart[x]; k < surf.g.vertexEdgeStart[x + 1]; ++k)
-    if (surf.seg.isCurveEdge(surf.g.vertexEdgeIds[k])) return kNone;
-  return x;
+  return pm.vertexInput[size_t(std::min_element(u.begin(), u.end()) - u.begin())];
 }
 
 // A hash of which input edges are curves of which kind (FNV-1a).
@@ -334,7 +330,7 @@ Patches flattenPatches(Surface& surf, const RemeshOptions& opt, const Progress& 
           rep.warnings.push_back(std::string("patch flattened with the ") + conditionName(order[f.next - 1]) +
                                  " boundary condition after: " + f.lastError + " [patch of " + std::to_string(faces.size()) + " faces]");
         if (f.scaleRatio > kSinkScaleRatio &&
-            F::cutThroughSink(surf.g, surf.seg, p, scaleSink(surf, f.w->pm, f.w->flat.u), 2 * opt.minAngle * kPi / 180)) {
+            F::cutThroughSink(surf.g, surf.seg, p, scaleSink(f.w->pm, f.w->flat.u), 2 * opt.minAngle * kPi / 180)) {
           ++rep.sinkCuts;
           split = true;
           continue;
