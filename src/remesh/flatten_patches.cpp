@@ -297,7 +297,8 @@ Patches flattenPatches(Surface& surf, const RemeshOptions& opt, const Progress& 
       // the round (the segmentation changes), and the flattenings after it are kept for the next
       for (size_t i = from; i < to; ++i) {
         const uint32_t p = todo[i];
-        const auto& faces = surf.seg.patches[p];
+        // a copy: a split that is undone rebuilds seg.patches, which may have grown meanwhile
+        const std::vector<uint32_t> faces = surf.seg.patches[p];
         Flattening& f = made[i];
         if (split) {
           spare.emplace(keyOf(faces), std::move(f));
