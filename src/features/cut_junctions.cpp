@@ -442,4 +442,108 @@ uint32_t straightenCutEars(const EdgeGraph& g, Segmentation& seg, const std::vec
   return keepCutsIfAllDisks(g, seg, original) ? total : 0;
 }
 
+uint32_t absorbCutSlivers(const EdgeGraph& g, Segmentation& seg, double minAngle, const std::vector<uint32_t>& region) {
+  constexpr size_t kSliverFaces = 4;  // patches this small are tried
+  const std::vector<EdgeKind> original = seg.edgeKind;
+  std::vector<uint32_t> ids;
+  if (region.empty()) {
+    for (uint32_t p = 0; p < seg.patches.size(); ++p) ids.push_back(p);
+  } else {
+    for (uint32_t f : region) ids.push_back(seg.facePatch[f]);
+    std::sort(ids.begin(), ids.end());
+    ids.erase(std::unique(ids.begin(), ids.end()), ids.end());
+  }
+  // the faces of the small patches with a corner below minAngle between two cuts
+  std::vector<std::vector<uint32_t>> slivers;
+  for (uint32_t p : ids) {
+    const auto& faces = seg.patches[p];
+    if (faces.size() > kSliverFaces) continue;
+    std::vector<std::pair<uint32_t, double>> wedge;  // (vertex, 3D angle inside p)
+    for (uint32_t f : faces)
+      for (int c = 0; c < 3; ++c) {
+        auto it = std::find_if(wedge.begin(), wedge.end(), [&](const auto& w) { return w.first == g.faces[f][c]; });
+        if (it == wedge.end()) wedge.push_back({g.faces[f][c], g.cornerAngle(f, c)});
+        else it->second += g.cornerAngle(f, c);
+      }
+    bool sharp = false;
+    for (const auto& [v, a] : wedge) {
+      if (a >= minAngle) continue;
+      bool onlyCuts = true, onCurve = false;
+      for (uint32_t k = g.vertexEdgeStart[v]; k < g.vertexEdgeStart[v + 1]; ++k) {
+        const EdgeKind kd = seg.edgeKind[g.vertexEdgeIds[k]];
+        onCurve = onCurve || kd != EdgeKind::None;
+        onlyCuts = onlyCuts && (kd == EdgeKind::None || kd == EdgeKind::Cut);
+      }
+      sharp = sharp || (onCurve && onlyCuts);
+    }
+    if (sharp) slivers.push_back(faces);
+  }
+  uint32_t absorbed = 0;
+  for (const auto& faces : slivers) {
+    // the border cut edges, longest first: the sliver joins the patch across one of them
+    std::vector<uint32_t> border;
+    const uint32_t p = seg.facePatch[faces[0]];
+    if (seg.patches[p].size() != faces.size()) continue;  // an earlier move took it in
+    for (uint32_t f : faces)
+      for (uint32_t e : g.faceEdges[f])
+        if (seg.edgeKind[e] == EdgeKind::Cut) border.push_back(e);
+    std::sort(border.begin(), border.end(), [&](uint32_t a, uint32_t b) {
+      return g.edgeLength(a) > g.edgeLength(b) || (g.edgeLength(a) == g.edgeLength(b) && a < b);
+    });
+    for (uint32_t e0 : border) {
+      const uint32_t f0 = g.edgeFaces[e0][0], f1 = g.edgeFaces[e0][1];
+      if (f0 == kNone || f1 == kNone || (seg.facePatch[f0] != p && seg.facePatch[f1] != p)) continue;
+      const uint32_t q = seg.facePatch[f0] == p ? seg.facePatch[f1] : seg.facePatch[f0];
+      if (q == p) continue;
+      const std::vector<EdgeKind> before = seg.edgeKind;
+      // every cut between the two goes, then the cut branches left dangling
+      std::vector<uint32_t> ends;
+      for (uint32_t f : seg.patches[p])
+        for (uint32_t e : g.faceEdges[f]) {
+          const uint32_t a = g.edgeFaces[e][0], b = g.edgeFaces[e][1];
+          if (seg.edgeKind[e] != EdgeKind::Cut || a == kNone || b == kNone) continue;
+          if (seg.facePatch[a] == q || seg.facePatch[b] == q) {
+            seg.edgeKind[e] = EdgeKind::None;
+            ends.push_back(g.edgeVerts[e][0]);
+            ends.push_back(g.edgeVerts[e][1]);
+          }
+        }
+      bool ok = true;
+      for (uint32_t x : ends) {
+        for (size_t guard = 0; ok; ++guard) {
+          uint32_t only = kNone, n = 0;
+          for (uint32_t k = g.vertexEdgeStart[x]; k < g.vertexEdgeStart[x + 1]; ++k)
+            if (seg.isCurveEdge(g.vertexEdgeIds[k])) only = g.vertexEdgeIds[k], ++n;
+          if (n != 1) break;
+          if (seg.edgeKind[only] != EdgeKind::Cut || guard > g.edgeCount()) {
+            ok = false;  // a feature's end would dangle
+            break;
+          }
+          seg.edgeKind[only] = EdgeKind::None;
+          x = g.otherVertex(only, x);
+        }
+      }
+      if (ok) {
+        rebuildCurves(g, seg);
+        if (keepCutsIfAllDisks(g, seg, before)) {
+          ++absorbed;
+          break;
+        }
+      } else {
+        seg.edgeKind = before;
+      }
+    }
+  }
+  if (absorbed == 0) {
+    if (seg.edgeKind != original) {
+      seg.edgeKind = original;
+      rebuildCurves(g, seg);
+    }
+    return 0;
+  }
+  seg.cutEdgeCount = 0;
+  for (EdgeKind kd : seg.edgeKind) seg.cutEdgeCount += kd == EdgeKind::Cut;
+  return absorbed;
+}
+
 }  // namespace conformesh::features

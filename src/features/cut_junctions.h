@@ -34,6 +34,13 @@ uint32_t improveCutJunctions(const EdgeGraph& g, Segmentation& seg, double scale
 uint32_t straightenCutEars(const EdgeGraph& g, Segmentation& seg, const std::vector<uint32_t>& region = {},
                            bool keepSplit = false);
 
+//! A patch of at most four faces with a corner below minAngle (radians) where only cuts meet (a
+//! sliver face cut all round, left by halving a small region: any mesh of it has the sliver's
+//! angles) joins the patch across one of its cut borders, longest first: the cuts between the
+//! two go, and the cut branches left dangling. Kept when every patch it touches stays a disk.
+//! Returns the number of patches absorbed. `region` (input faces; empty: all): only its patches.
+uint32_t absorbCutSlivers(const EdgeGraph& g, Segmentation& seg, double minAngle, const std::vector<uint32_t>& region = {});
+
 //! The number of patches the faces `faces` lie in.
 size_t patchesOver(const Segmentation& seg, const std::vector<uint32_t>& faces);
 

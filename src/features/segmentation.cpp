@@ -30,12 +30,19 @@ struct VoronoiSeeds {
   std::vector<Vec3> centroid;
   uint32_t seeds = 0;
   uint32_t next = kNone;  // the next seed: the face farthest from the seeds so far
+  std::vector<uint32_t> first;  // seeds taken in this order before the farthest points
+  std::vector<uint32_t> seedFaces;  // the seeds run, in label order
 
   VoronoiSeeds(const EdgeGraph& g_, const std::vector<uint8_t>& m, const std::vector<uint32_t>& r,
-               const std::vector<uint32_t>& l)
-      : g(g_), mask(m), region(r), local(l), dist(r.size(), INFINITY), label(r.size(), kNone), centroid(r.size()) {
+               const std::vector<uint32_t>& l, std::vector<uint32_t> firstSeeds = {})
+      : g(g_), mask(m), region(r), local(l), dist(r.size(), INFINITY), label(r.size(), kNone), centroid(r.size()),
+        first(std::move(firstSeeds)) {
     for (uint32_t i = 0; i < region.size(); ++i) centroid[i] = g.faceCentroid(region[i]);
     if (region.empty()) return;
+    if (!first.empty()) {
+      next = first[0];
+      return;
+    }
     // first seed: farthest from region[0]
     run(0, 0);
     next = uint32_t(std::max_element(dist.begin(), dist.end(),
@@ -44,10 +51,12 @@ struct VoronoiSeeds {
                                      }) - dist.begin());
     std::fill(dist.begin(), dist.end(), INFINITY);
     std::fill(label.begin(), label.end(), kNone);
+    seedFaces.clear();
   }
 
   // incremental multi-source Dijkstra: only faces closer to the new seed change
   void run(uint32_t seed, uint32_t lab) {
+    if (lab == seedFaces.size()) seedFaces.push_back(seed);
     using Item = std::pair<double, uint32_t>;
     std::priority_queue<Item, std::vector<Item>, std::greater<Item>> pq;
     dist[seed] = 0;
@@ -79,6 +88,10 @@ struct VoronoiSeeds {
   void growTo(uint32_t k) {
     while (seeds < k && next != kNone) {
       run(next, seeds++);
+      if (seeds < first.size()) {
+        next = first[seeds];
+        continue;
+      }
       double best = -1;
       next = kNone;
       for (uint32_t i = 0; i < dist.size(); ++i)
@@ -114,34 +127,124 @@ struct Cutter {
     return out;
   }
 
-  std::vector<std::vector<uint32_t>> groups(const std::vector<uint32_t>& region,
-                                            const std::vector<uint32_t>& label, uint32_t k) {
-    std::vector<std::vector<uint32_t>> out(k);
+  // The parts of a partition, one per label. A tie in the distances can leave a cell in pieces
+  // (symmetric seeds on a regular grid do): a piece without its cell's seed joins the cell of a
+  // face beside it, so every part is connected.
+  std::vector<std::vector<uint32_t>> groups(const std::vector<uint32_t>& region, std::vector<uint32_t>& label,
+                                            const std::vector<uint32_t>& seedFaces) {
+    std::vector<uint32_t> piece(region.size(), kNone), stack, members;
+    auto neighbours = [&](uint32_t i, auto&& visit) {
+      for (uint32_t e : g.faceEdges[region[i]]) {
+        if (mask[e]) continue;
+        const uint32_t o = g.edgeFaces[e][0] == region[i] ? g.edgeFaces[e][1] : g.edgeFaces[e][0];
+        const uint32_t j = o == kNone ? kNone : local[o];
+        if (j != kNone) visit(j);
+      }
+    };
+    // the seeds' pieces first: their faces keep their labels
+    uint32_t pieces = 0;
+    for (uint32_t s0 : seedFaces) {
+      if (piece[s0] != kNone) continue;
+      piece[s0] = pieces;
+      stack.push_back(s0);
+      while (!stack.empty()) {
+        const uint32_t i = stack.back();
+        stack.pop_back();
+        neighbours(i, [&](uint32_t j) {
+          if (piece[j] == kNone && label[j] == label[s0]) piece[j] = pieces, stack.push_back(j);
+        });
+      }
+      ++pieces;
+    }
+    // every other piece takes the label of a seed's piece beside it (passes until none is left)
+    for (bool changed = true; changed;) {
+      changed = false;
+      for (uint32_t i0 = 0; i0 < region.size(); ++i0) {
+        if (piece[i0] != kNone || label[i0] == kNone) continue;
+        uint32_t to = kNone;
+        members.assign(1, i0);
+        piece[i0] = pieces;  // marks the stray piece while it is gathered
+        for (size_t k = 0; k < members.size(); ++k)
+          neighbours(members[k], [&](uint32_t j) {
+            if (label[j] == label[i0] && piece[j] == kNone) piece[j] = pieces, members.push_back(j);
+            else if (piece[j] != kNone && piece[j] < pieces && to == kNone) to = j;
+          });
+        for (uint32_t m : members) piece[m] = to == kNone ? kNone : piece[to];
+        if (to == kNone) continue;  // no seed's piece beside it yet
+        for (uint32_t m : members) label[m] = label[to];
+        changed = true;
+      }
+    }
+    std::vector<std::vector<uint32_t>> out(seedFaces.size());
     for (uint32_t i = 0; i < region.size(); ++i)
-      if (label[i] != kNone) out[label[i]].push_back(region[i]);
+      if (label[i] != kNone && label[i] < out.size()) out[label[i]].push_back(region[i]);
     out.erase(std::remove_if(out.begin(), out.end(), [](const auto& v) { return v.empty(); }), out.end());
     return out;
   }
 
-  // Partition `region` into parts, trying k = minK.. up to 8 seeds; the first k whose parts are
-  // all disks wins, else the k = 8 partition is kept and its non-disk parts are returned in `todo`.
-  void partition(const std::vector<uint32_t>& region, uint32_t minK, std::vector<std::vector<uint32_t>>& done,
-                 std::vector<std::vector<uint32_t>>& todo) {
+  // Two seeds (region-local face indices) that part a region that is not a disk where farthest
+  // points often do not; `pm` is the region extracted with its loops, `local` set. With two or
+  // more border loops: faces on opposite sides of the shortest loop, so the cells' border crosses
+  // that loop twice and joins it to the others (a cell that keeps a whole loop inside is cut
+  // again, one loop fewer each time). Pinched (touching itself at a vertex): a face in each of
+  // the first pinch's wedges, so no cell keeps both. Empty otherwise (a closed region: the
+  // farthest points do).
+  std::vector<uint32_t> topologySeeds(const PatchMesh& pm) const {
+    const auto& T = pm.mesh.triangles;
+    if (pm.boundaryLoops.size() >= 2) {
+      auto length = [&](const PatchMesh::BoundaryHalfedge& h) {
+        return norm(g.positions[pm.vertexInput[T[3 * h.face + (h.corner + 1) % 3]]] -
+                    g.positions[pm.vertexInput[T[3 * h.face + h.corner]]]);
+      };
+      std::vector<double> loopLength(pm.boundaryLoops.size(), 0.0);
+      size_t shortest = 0;
+      for (size_t l = 0; l < loopLength.size(); ++l) {
+        for (const auto& h : pm.boundaryLoops[l]) loopLength[l] += length(h);
+        if (loopLength[l] < loopLength[shortest]) shortest = l;
+      }
+      const auto& loop = pm.boundaryLoops[shortest];
+      size_t half = 0;
+      for (double run = 0; half + 1 < loop.size() && run < 0.5 * loopLength[shortest]; ++half) run += length(loop[half]);
+      const uint32_t a = local[pm.faceInput[loop[0].face]], b = local[pm.faceInput[loop[half].face]];
+      return a == b ? std::vector<uint32_t>{} : std::vector<uint32_t>{a, b};
+    }
+    if (!pm.pinched) return {};
+    // the input vertex of least index with two wedges (sub-mesh vertices), a face at each
+    std::vector<uint32_t> faceAt(pm.vertexInput.size(), kNone);
+    for (uint32_t t = 0; t < pm.faceInput.size(); ++t)
+      for (int c = 0; c < 3; ++c)
+        if (faceAt[T[3 * t + c]] == kNone) faceAt[T[3 * t + c]] = local[pm.faceInput[t]];
+    std::vector<std::pair<uint32_t, uint32_t>> wedges;  // (input vertex, sub-mesh vertex)
+    for (uint32_t w = 0; w < pm.vertexInput.size(); ++w) wedges.push_back({pm.vertexInput[w], w});
+    std::sort(wedges.begin(), wedges.end());
+    for (size_t i = 0; i + 1 < wedges.size(); ++i)
+      if (wedges[i].first == wedges[i + 1].first && faceAt[wedges[i].second] != faceAt[wedges[i + 1].second])
+        return {faceAt[wedges[i].second], faceAt[wedges[i + 1].second]};
+    return {};
+  }
+
+  // Partition `region` into parts by k = minK..maxK geodesic Voronoi cells (seeds: the topology
+  // seeds of `pm`, the region extracted, when given; then farthest points); the first k whose
+  // parts are all disks wins, else the k = maxK partition is kept and its non-disk parts are
+  // returned in `todo`.
+  void partition(const std::vector<uint32_t>& region, uint32_t minK, uint32_t maxK, const PatchMesh* pm,
+                 std::vector<std::vector<uint32_t>>& done, std::vector<std::vector<uint32_t>>& todo) {
     for (uint32_t i = 0; i < region.size(); ++i) local[region[i]] = i;
-    const uint32_t maxK = std::min<uint32_t>(8, uint32_t(region.size()));
+    maxK = std::min<uint32_t>(maxK, uint32_t(region.size()));
     std::vector<uint32_t> label, cut;
     std::vector<std::vector<uint32_t>> parts;
-    VoronoiSeeds voronoi(g, mask, region, local);  // the cuts tried are undone: the mask it sees stays
+    std::vector<uint8_t> disk;
+    // the cuts tried are undone: the mask it sees stays
+    VoronoiSeeds voronoi(g, mask, region, local, pm ? topologySeeds(*pm) : std::vector<uint32_t>{});
     for (uint32_t k = std::min(minK, maxK); k <= maxK; ++k) {
       voronoi.growTo(k);
       label = voronoi.label;
+      parts = groups(region, label, voronoi.seedFaces);
       cut = borders(region, label);
-      parts = groups(region, label, k);
       for (uint32_t e : cut) mask[e] = 1;
-      bool all = true;
-      for (const auto& p : parts)
-        if (!extractPatch(g, mask, p, false).isDisk()) { all = false; break; }
-      if (all || k == maxK) break;
+      disk.clear();
+      for (const auto& p : parts) disk.push_back(extractPatch(g, mask, p, false).isDisk());
+      if (std::count(disk.begin(), disk.end(), 1) == std::ptrdiff_t(parts.size()) || k == maxK) break;
       for (uint32_t e : cut) mask[e] = 0;
     }
     for (uint32_t f : region) local[f] = kNone;
@@ -149,23 +252,31 @@ struct Cutter {
       seg.edgeKind[e] = EdgeKind::Cut;
       ++seg.cutEdgeCount;
     }
-    for (auto& p : parts) {
-      if (extractPatch(g, mask, p, false).isDisk()) done.push_back(std::move(p));
-      else todo.push_back(std::move(p));
-    }
+    for (size_t i = 0; i < parts.size(); ++i) (disk[i] ? done : todo).push_back(std::move(parts[i]));
   }
 
-  // Cut `patch` until every part is a disk; counts the parts into patchCount.
+  // Cut `patch` until every part is a disk, two parts at a time; counts the parts into
+  // patchCount. Halving only the parts that still need it: a partition into up to eight cells
+  // kept every cell of the first k whose cells were all disks, or all eight, cutting parts that
+  // were disks already (armadillo: 52 patches from 14 regions; halving: 28).
   void toDisks(const std::vector<uint32_t>& patch, uint32_t& patchCount) {
     std::vector<std::vector<uint32_t>> todo{patch}, done;
     while (!todo.empty()) {
       auto r = std::move(todo.back());
       todo.pop_back();
-      if (extractPatch(g, mask, r, false).isDisk()) {
+      const PatchMesh pm = extractPatch(g, mask, r, true);
+      if (pm.isDisk()) {
         ++patchCount;
         continue;
       }
-      partition(r, 2, done, todo);
+      partition(r, 2, 2, &pm, done, todo);
+      if (done.empty() && todo.size() == 1 && todo.back().size() == r.size()) {
+        // no cut came of it (never seen): the farthest points, up to eight cells
+        todo.pop_back();
+        partition(r, 2, 8, nullptr, done, todo);
+        if (done.empty() && todo.size() == 1 && todo.back().size() == r.size())
+          fail(Code::InternalError, Stage::Segment, "a region that is not a disk could not be cut");
+      }
       patchCount += uint32_t(done.size());
       done.clear();
       if (patchCount + todo.size() > maxPatches)
@@ -445,6 +556,7 @@ Segmentation segment(const EdgeGraph& g, const FeatureOptions& options, const Pr
     fail(Code::InvalidArgument, Stage::Segment, "minPatchWidth must be finite and >= 0");
   Segmentation seg;
   seg.cornerTurnDeg = options.cornerTurnDeg;
+  seg.angleBoundDeg = options.angleBoundDeg;
   seg.junctionScale = options.junctionScale;
   seg.edgeKind.assign(g.edgeCount(), EdgeKind::None);
   if (options.detectCreases) {
@@ -494,6 +606,7 @@ Segmentation segment(const EdgeGraph& g, const FeatureOptions& options, const Pr
   improveCutJunctions(g, seg, seg.junctionScale);
   mergeCloseJunctions(g, seg, kCloseJunctionFactor * seg.junctionScale);
   straightenCutEars(g, seg);
+  absorbCutSlivers(g, seg, seg.angleBoundDeg * kPi / 180);
   if (progress && !progress(Stage::Segment, 1.0)) fail(Code::Cancelled, Stage::Segment, "cancelled");
   return seg;
 }
@@ -503,7 +616,7 @@ bool splitPatch(const EdgeGraph& g, Segmentation& seg, uint32_t p, uint32_t part
   const std::vector<uint32_t> region = seg.patches[p];  // the new cuts and their ends lie in it
   Cutter cutter(g, seg, 1u << 30);
   std::vector<std::vector<uint32_t>> done, todo;
-  cutter.partition(seg.patches[p], std::max<uint32_t>(2, parts), done, todo);
+  cutter.partition(seg.patches[p], std::max<uint32_t>(2, parts), 8, nullptr, done, todo);
   uint32_t count = 0;
   while (!todo.empty()) {
     auto r = std::move(todo.back());
@@ -522,6 +635,14 @@ bool splitPatch(const EdgeGraph& g, Segmentation& seg, uint32_t p, uint32_t part
   if (straightenCutEars(g, seg, region, true) > 0 && patchesOver(seg, region) < 2) {
     seg.edgeKind = split;
     seg.cutEdgeCount = cutEdges;
+    rebuildCurves(g, seg);
+  }
+  // so must absorbing the slivers it left
+  const std::vector<EdgeKind> straightened = seg.edgeKind;
+  const uint32_t straightenedCuts = seg.cutEdgeCount;
+  if (absorbCutSlivers(g, seg, seg.angleBoundDeg * kPi / 180, region) > 0 && patchesOver(seg, region) < 2) {
+    seg.edgeKind = straightened;
+    seg.cutEdgeCount = straightenedCuts;
     rebuildCurves(g, seg);
   }
   return true;

@@ -71,6 +71,7 @@ struct Segmentation {
   uint32_t cutEdgeCount = 0;
   double cornerTurnDeg = 50.0;  //!< the option used, kept for rebuildCurves after splits
   double junctionScale = 0.0;  //!< the option used, kept for splitPatch
+  double angleBoundDeg = 30.0;  //!< the option used, kept for splitPatch
   uint32_t reroutedCutEnds = 0;  //!< cut ends moved by improveCutJunctions
   uint32_t droppedFeatureEdges = 0;  //!< sharp edges dropped: short chains, borders of narrow patches
   uint32_t mergedNarrowPatches = 0;  //!< patches narrower than minPatchWidth merged into a neighbour

@@ -7,6 +7,7 @@
 #include <utility>
 #include <vector>
 
+#include "core/constants.h"
 #include "features/close_junctions.h"
 #include "features/cut_junctions.h"
 #include "features/patch_mesh.h"
@@ -101,6 +102,42 @@ std::vector<uint32_t> pathToBorder(const EdgeGraph& g, const Segmentation& seg, 
   return path;
 }
 
+// Mark the paths' edges as cuts, make the junction repairs of a split over patch p, and keep the
+// result only when p's faces now lie in two or more disks and there are more patches than before.
+bool applyCuts(const EdgeGraph& g, Segmentation& seg, uint32_t p, const std::vector<const std::vector<uint32_t>*>& paths) {
+  const std::vector<uint32_t> region = seg.patches[p];  // the cuts and their ends lie in it
+  const size_t patchesBefore = seg.patches.size();
+  const std::vector<EdgeKind> before = seg.edgeKind;
+  const uint32_t cutEdges = seg.cutEdgeCount;
+  for (const auto* path : paths)
+    for (size_t i = 0; i + 1 < path->size(); ++i) {
+      const uint32_t e = g.findEdge((*path)[i], (*path)[i + 1]);
+      if (seg.edgeKind[e] != EdgeKind::None) continue;
+      seg.edgeKind[e] = EdgeKind::Cut;
+      ++seg.cutEdgeCount;
+    }
+  rebuildCurves(g, seg);
+  improveCutJunctions(g, seg, seg.junctionScale, region);
+  mergeCloseJunctions(g, seg, kCloseJunctionFactor * seg.junctionScale, region);
+  straightenCutEars(g, seg, region, true);
+  absorbCutSlivers(g, seg, seg.angleBoundDeg * kPi / 180, region);
+  bool ok = patchesOver(seg, region) >= 2 && seg.patches.size() > patchesBefore;
+  if (ok) {
+    const std::vector<uint8_t> mask = seg.curveMask();
+    std::vector<uint32_t> parts;
+    for (uint32_t f : region) parts.push_back(seg.facePatch[f]);
+    std::sort(parts.begin(), parts.end());
+    parts.erase(std::unique(parts.begin(), parts.end()), parts.end());
+    for (uint32_t q : parts) ok = ok && extractPatch(g, mask, seg.patches[q], false).isDisk();
+  }
+  if (!ok) {
+    seg.edgeKind = before;
+    seg.cutEdgeCount = cutEdges;
+    rebuildCurves(g, seg);
+  }
+  return ok;
+}
+
 }  // namespace
 
 bool cutThroughSink(const EdgeGraph& g, Segmentation& seg, uint32_t p, uint32_t sink, double minWedge) {
@@ -124,37 +161,46 @@ bool cutThroughSink(const EdgeGraph& g, Segmentation& seg, uint32_t p, uint32_t 
   const std::vector<uint32_t> avoid(first.begin() + 1, first.end());
   const std::vector<uint32_t> second = pathToBorder(g, seg, p, sink, opposite, avoid);
   if (second.size() < 2) return false;
+  return applyCuts(g, seg, p, {&first, &second});
+}
 
-  const std::vector<uint32_t> region = seg.patches[p];  // the cuts and their ends lie in it
-  const size_t patchesBefore = seg.patches.size();
-  const std::vector<EdgeKind> before = seg.edgeKind;
-  const uint32_t cutEdges = seg.cutEdgeCount;
-  for (const auto* path : {&first, &second})
-    for (size_t i = 0; i + 1 < path->size(); ++i) {
-      const uint32_t e = g.findEdge((*path)[i], (*path)[i + 1]);
-      if (seg.edgeKind[e] != EdgeKind::None) continue;
-      seg.edgeKind[e] = EdgeKind::Cut;
-      ++seg.cutEdgeCount;
-    }
-  rebuildCurves(g, seg);
-  improveCutJunctions(g, seg, seg.junctionScale, region);
-  mergeCloseJunctions(g, seg, kCloseJunctionFactor * seg.junctionScale, region);
-  straightenCutEars(g, seg, region, true);
-  bool ok = patchesOver(seg, region) >= 2 && seg.patches.size() > patchesBefore;
-  if (ok) {
-    const std::vector<uint8_t> mask = seg.curveMask();
-    std::vector<uint32_t> parts;
-    for (uint32_t f : region) parts.push_back(seg.facePatch[f]);
-    std::sort(parts.begin(), parts.end());
-    parts.erase(std::unique(parts.begin(), parts.end()), parts.end());
-    for (uint32_t q : parts) ok = ok && extractPatch(g, mask, seg.patches[q], false).isDisk();
+bool cutThroughWideCorner(const EdgeGraph& g, Segmentation& seg, uint32_t p, uint32_t v, double minWedge) {
+  if (p >= seg.patches.size() || v >= g.vertexCount || !onCurve(g, seg, v)) return false;
+  // the wedge of p at v: from a curve edge with p's face on its left, face by face round v
+  // through p's faces to the next curve edge; its inner ring vertices with their angle from the
+  // first edge
+  uint32_t f = kNone, w = kNone;
+  for (uint32_t k = g.vertexEdgeStart[v]; k < g.vertexEdgeStart[v + 1] && f == kNone; ++k) {
+    const uint32_t e = g.vertexEdgeIds[k];
+    if (!seg.isCurveEdge(e)) continue;
+    for (uint32_t fe : g.edgeFaces[e])
+      if (fe != kNone && seg.facePatch[fe] == p) f = fe, w = g.otherVertex(e, v);
   }
-  if (!ok) {
-    seg.edgeKind = before;
-    seg.cutEdgeCount = cutEdges;
-    rebuildCurves(g, seg);
+  if (f == kNone) return false;
+  std::vector<std::pair<uint32_t, double>> inner;
+  double wedge = 0;
+  const uint32_t valence = g.vertexEdgeStart[v + 1] - g.vertexEdgeStart[v];
+  for (uint32_t step = 0; step <= valence; ++step) {
+    int c = 0;
+    while (c < 3 && g.faces[f][c] != v) ++c;
+    if (c == 3) return false;
+    wedge += g.cornerAngle(f, c);
+    const uint32_t next = g.faces[f][(c + 1) % 3] == w ? g.faces[f][(c + 2) % 3] : g.faces[f][(c + 1) % 3];
+    const uint32_t e = g.findEdge(v, next);
+    if (e == kNone) return false;
+    if (seg.isCurveEdge(e)) break;
+    inner.push_back({next, wedge});
+    f = g.edgeFaces[e][0] == f ? g.edgeFaces[e][1] : g.edgeFaces[e][0];
+    if (f == kNone || seg.facePatch[f] != p) return false;
+    w = next;
   }
-  return ok;
+  // the path leaves v near the middle of the wedge, each side at least 3/8 of it and minWedge
+  std::vector<uint32_t> middle;
+  for (const auto& [x, a] : inner)
+    if (std::min(a, wedge - a) >= std::max(0.375 * wedge, minWedge)) middle.push_back(x);
+  const std::vector<uint32_t> path = pathToBorder(g, seg, p, v, middle, {});
+  if (path.size() < 2) return false;
+  return applyCuts(g, seg, p, {&path});
 }
 
 }  // namespace conformesh::features

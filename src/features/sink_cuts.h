@@ -1,6 +1,7 @@
 // conformesh — sink cuts: a patch whose conformal scale factor collapses towards a point (a
 // finger tip, an ear, a horn: curvature gathered in a small region) is cut in two by a path of
-// input edges through that point, from its border to its border.
+// input edges through that point, from its border to its border; and a patch whose border has a
+// wedge too wide to lay out flat is cut through that corner.
 //
 // With u = 0 on the border (the free boundary condition, the least area distortion: Sawhney and
 // Crane, Boundary first flattening, ACM TOG 2017) the scale cannot sink where the border passes:
@@ -28,5 +29,14 @@ namespace conformesh::features {
 //! the segmentation as it was, when there is no such pair of paths or the patch would not end
 //! up as two or more disks, or the segmentation with no more patches than before. O(patch) plus the rebuilds of the curves.
 bool cutThroughSink(const EdgeGraph& g, Segmentation& seg, uint32_t p, uint32_t sink, double minWedge);
+
+//! Cut patch p in two along the shortest path of input edges inside it from `corner` (a vertex
+//! on its border) to its border again, leaving the corner near the middle of p's wedge there
+//! (each side at least 3/8 of the wedge and `minWedge` radians). For a wedge too wide to lay
+//! out flat: a border vertex whose 3D angle inside the patch nears or passes 2π (a saddle of a
+//! scan beside a curve) makes the free boundary's layout overlap itself however small the
+//! patch around it, so a split that leaves it whole fails again. False, with the segmentation as
+//! it was, as cutThroughSink. O(patch) plus the rebuilds of the curves.
+bool cutThroughWideCorner(const EdgeGraph& g, Segmentation& seg, uint32_t p, uint32_t corner, double minWedge);
 
 }  // namespace conformesh::features

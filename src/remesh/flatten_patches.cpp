@@ -24,6 +24,15 @@ constexpr size_t kMinSplitFaces = 2;
 // the sink as a quality mesh can, far slower than the planar size shrinks there).
 constexpr double kSinkScaleRatio = 4.0;
 
+// When a patch's flattening fails, a vertex whose 3D angle is within this of 2π the wrong way is
+// cut through (features/sink_cuts.h) rather than left inside a part of a split, which fails
+// again for the same reason however small: a border vertex whose wedge exceeds 2π − kConeGap
+// (with u = 0 on the border its planar angle stays near the 3D one: little room is left before
+// the layout overlaps itself), an interior vertex whose angle sum is below it (a cone the flat
+// map must open inside the patch: with a long border edge in its star, no u with the border's
+// fixed keeps every triangle valid). man: a 299° vertex failed from 2,026 faces down to 8.
+constexpr double kConeGap = 0.25 * kPi;
+
 // The 3D angle sum at each vertex of a patch over the patch's faces.
 std::vector<double> cornerWedgeAngles(const F::PatchMesh& pm) {
   std::vector<double> a(pm.vertexInput.size(), 0.0);
@@ -91,6 +100,34 @@ struct Flattening {
 uint32_t scaleSink(const F::PatchMesh& pm, const std::vector<double>& u) {
   if (u.size() != pm.vertexInput.size() || u.empty()) return kNone;
   return pm.vertexInput[size_t(std::min_element(u.begin(), u.end()) - u.begin())];
+}
+
+// The input vertex on patch mesh pm's border with the widest 3D wedge above 2π − kConeGap (kNone
+// for none).
+uint32_t widestCorner(const F::PatchMesh& pm) {
+  const std::vector<double> angle = cornerWedgeAngles(pm);
+  uint32_t best = kNone;
+  double widest = 2 * kPi - kConeGap;
+  for (const auto& loop : pm.boundaryLoops)
+    for (const auto& h : loop) {
+      const uint32_t v = pm.mesh.triangles[3 * h.face + h.corner];
+      if (angle[v] > widest) widest = angle[v], best = pm.vertexInput[v];
+    }
+  return best;
+}
+
+// The input vertex inside patch mesh pm (off its border) with the smallest 3D angle sum below
+// 2π − kConeGap (kNone for none).
+uint32_t sharpestCone(const F::PatchMesh& pm) {
+  const std::vector<double> angle = cornerWedgeAngles(pm);
+  std::vector<uint8_t> border(angle.size(), 0);
+  for (const auto& loop : pm.boundaryLoops)
+    for (const auto& h : loop) border[pm.mesh.triangles[3 * h.face + h.corner]] = 1;
+  uint32_t best = kNone;
+  double sharpest = 2 * kPi - kConeGap;
+  for (uint32_t v = 0; v < angle.size(); ++v)
+    if (!border[v] && angle[v] < sharpest) sharpest = angle[v], best = pm.vertexInput[v];
+  return best;
 }
 
 // A hash of which input edges are curves of which kind (FNV-1a).
@@ -258,6 +295,7 @@ Patches flattenPatches(Surface& surf, const RemeshOptions& opt, const Progress& 
   // each round flattens what is new and splits at most one patch: the rounds are capped by the
   // patches the segmentation may make (a split that undoes another would otherwise cycle)
   const uint32_t maxPatches = F::FeatureOptions{}.maxPatches;
+  const double minWedge = 2 * opt.minAngle * kPi / 180;  // each side of a cut through a vertex
   std::set<uint64_t> lateral;  // segmentations left by splits that made no more patches
   for (int round = 0;; ++round) {
     if (round > 64 + 2 * int(maxPatches) || surf.seg.patches.size() > maxPatches)
@@ -305,6 +343,16 @@ Patches flattenPatches(Surface& surf, const RemeshOptions& opt, const Progress& 
           continue;
         }
         if (f.error) std::rethrow_exception(f.error);
+        // a failed flattening: cut through a vertex too far from flat (kConeGap) before splitting
+        // around it
+        if ((f.splitAsked || !f.flattened) &&
+            (F::cutThroughWideCorner(surf.g, surf.seg, p, widestCorner(f.w->pm), minWedge) ||
+             F::cutThroughSink(surf.g, surf.seg, p, sharpestCone(f.w->pm), minWedge))) {
+          ++rep.patchSplitsForScale;
+          rep.warnings.push_back("patch cut through a vertex far from flat after: " + f.lastError);
+          split = true;
+          continue;
+        }
         if (f.splitAsked) {
           if (splitOnce(surf, p, lateral)) {
             ++rep.patchSplitsForScale;
@@ -331,7 +379,7 @@ Patches flattenPatches(Surface& surf, const RemeshOptions& opt, const Progress& 
           rep.warnings.push_back(std::string("patch flattened with the ") + conditionName(order[f.next - 1]) +
                                  " boundary condition after: " + f.lastError + " [patch of " + std::to_string(faces.size()) + " faces]");
         if (f.scaleRatio > kSinkScaleRatio &&
-            F::cutThroughSink(surf.g, surf.seg, p, scaleSink(f.w->pm, f.w->flat.u), 2 * opt.minAngle * kPi / 180)) {
+            F::cutThroughSink(surf.g, surf.seg, p, scaleSink(f.w->pm, f.w->flat.u), minWedge)) {
           ++rep.sinkCuts;
           split = true;
           continue;

@@ -2,6 +2,9 @@
 #include "core/constants.h"
 
 #include <algorithm>
+#include <array>
+#include <utility>
+#include <vector>
 #include <cmath>
 #include <fstream>
 #include <iterator>
@@ -624,4 +627,79 @@ TEST_CASE("features: mergeCloseJunctions moves cut junctions off short curves; f
     CHECK(featuresChanged == 0);
   }
   CHECK(modelsWithShortCurves > 0);  // the test sees a merge at all
+}
+
+namespace {
+// User feature edges along the closed polyline of grid points (i, j) of testshapes::square(n).
+void gridLoop(const EdgeGraph& g, int n, const std::vector<std::array<int, 2>>& pts, FeatureOptions& o) {
+  for (size_t k = 0; k < pts.size(); ++k) {
+    const auto a = pts[k], b = pts[(k + 1) % pts.size()];
+    o.featureEdges.push_back({vertexAt(g, double(a[0]) / n, double(a[1]) / n), vertexAt(g, double(b[0]) / n, double(b[1]) / n)});
+  }
+}
+// The border of the grid rectangle [x0, x1] x [y0, y1], counterclockwise.
+std::vector<std::array<int, 2>> gridRect(int x0, int y0, int x1, int y1) {
+  std::vector<std::array<int, 2>> p;
+  for (int x = x0; x < x1; ++x) p.push_back({x, y0});
+  for (int y = y0; y < y1; ++y) p.push_back({x1, y});
+  for (int x = x1; x > x0; --x) p.push_back({x, y1});
+  for (int y = y1; y > y0; --y) p.push_back({x0, y});
+  return p;
+}
+}  // namespace
+
+TEST_CASE("features: a region with holes is halved across its loops, one patch per hole at most beyond the first two") {
+  // a square with three closed feature loops inside: the region around them has four border
+  // loops; each halving joins one loop to the others, so it needs at most four patches
+  const int n = 24;
+  const EdgeGraph g = buildEdgeGraph(testshapes::square(n));
+  FeatureOptions o;
+  gridLoop(g, n, gridRect(4, 4, 6, 6), o);
+  gridLoop(g, n, gridRect(16, 5, 18, 7), o);
+  gridLoop(g, n, gridRect(10, 16, 12, 18), o);
+  const Segmentation s = segment(g, o);
+  CHECK(s.cutEdgeCount > 0);
+  CHECK(s.patches.size() <= 3 + 4);
+  checkPatchesAreDisks(g, s);
+}
+
+TEST_CASE("features: a region touching itself at a vertex is cut in two there, a wedge in each part") {
+  // a feature loop from a border vertex v into the square and back to v: the region outside it
+  // has two wedges at v (a pinch); the two parts of the cut each keep one
+  const int n = 12;
+  const EdgeGraph g = buildEdgeGraph(testshapes::square(n));
+  FeatureOptions o;
+  gridLoop(g, n, {{0, 6}, {1, 7}, {2, 7}, {3, 7}, {3, 6}, {3, 5}, {2, 5}, {1, 5}, {1, 6}}, o);
+  const Segmentation s = segment(g, o);
+  CHECK(s.patches.size() == 3);
+  checkPatchesAreDisks(g, s);
+  const uint32_t v = vertexAt(g, 0.0, 0.5);
+  std::set<uint32_t> around;
+  for (uint32_t f = 0; f < g.faceCount; ++f)
+    for (int c = 0; c < 3; ++c)
+      if (g.faces[f][c] == v) around.insert(s.facePatch[f]);
+  CHECK(around.size() == 3);  // the loop's inside and the two parts of the outside
+}
+
+TEST_CASE("features: absorbCutSlivers joins a face cut all round to its neighbour when a corner is below the bound") {
+  const int n = 6;
+  const EdgeGraph g = buildEdgeGraph(testshapes::square(n));
+  Segmentation s = segment(g, FeatureOptions{});
+  REQUIRE(s.patches.size() == 1);
+  // the face (2, 2), (3, 2), (3, 3) of the grid: corners of 45, 90 and 45 degrees
+  const uint32_t a = vertexAt(g, 2.0 / n, 2.0 / n), b = vertexAt(g, 3.0 / n, 2.0 / n), c = vertexAt(g, 3.0 / n, 3.0 / n);
+  for (auto [x, y] : {std::pair{a, b}, std::pair{b, c}, std::pair{c, a}}) {
+    const uint32_t e = g.findEdge(x, y);
+    REQUIRE(e != kNone);
+    s.edgeKind[e] = EdgeKind::Cut;
+  }
+  rebuildCurves(g, s);
+  REQUIRE(s.patches.size() == 2);
+  const std::vector<EdgeKind> cut = s.edgeKind;
+  CHECK(absorbCutSlivers(g, s, 40.0 * kPi / 180) == 0);  // 45 degrees: no sliver at this bound
+  CHECK(s.edgeKind == cut);
+  CHECK(absorbCutSlivers(g, s, 50.0 * kPi / 180) == 1);
+  CHECK(s.patches.size() == 1);
+  CHECK(s.cutEdgeCount == 0);
+  checkPatchesAreDisks(g, s);
 }

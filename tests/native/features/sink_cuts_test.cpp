@@ -1,6 +1,7 @@
 #include <doctest/doctest.h>
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <vector>
 
@@ -14,6 +15,20 @@
 
 using namespace conformesh;
 using namespace conformesh::features;
+
+namespace {
+// After a cut of a one-patch segmentation through v: two disks, and the 3D angle at v in each.
+std::array<double, 2> twoDisksAround(const EdgeGraph& g, const Segmentation& s, uint32_t v) {
+  REQUIRE(s.patches.size() == 2);
+  const std::vector<uint8_t> mask = s.curveMask();
+  for (const auto& faces : s.patches) CHECK(extractPatch(g, mask, faces).isDisk());
+  std::array<double, 2> side{0, 0};
+  for (uint32_t f = 0; f < g.faceCount; ++f)
+    for (int c = 0; c < 3; ++c)
+      if (g.faces[f][c] == v) side[s.facePatch[f]] += g.cornerAngle(f, c);
+  return side;
+}
+}  // namespace
 
 TEST_CASE("sink cuts: the bump is cut in two disks through its tip, leaving it in opposite directions") {
   const EdgeGraph g = buildEdgeGraph(testshapes::bump(2.0, 0.3));
@@ -30,19 +45,13 @@ TEST_CASE("sink cuts: the bump is cut in two disks through its tip, leaving it i
   CHECK(s.edgeKind == before);
 
   REQUIRE(cutThroughSink(g, s, 0, tip, kPi / 3));
-  REQUIRE(s.patches.size() == 2);
-  const std::vector<uint8_t> mask = s.curveMask();
-  for (const auto& faces : s.patches) CHECK(extractPatch(g, mask, faces).isDisk());
+  const std::array<double, 2> side = twoDisksAround(g, s, tip);
   // the tip is on the cut, which passes through it: two cut edges there, and the angles of
   // the faces between them on either side each at least 3/8 of the angle sum around the tip
   std::vector<uint32_t> cutEdges;
   for (uint32_t k = g.vertexEdgeStart[tip]; k < g.vertexEdgeStart[tip + 1]; ++k)
     if (s.edgeKind[g.vertexEdgeIds[k]] == EdgeKind::Cut) cutEdges.push_back(g.vertexEdgeIds[k]);
   REQUIRE(cutEdges.size() == 2);
-  double side[2] = {0, 0};
-  for (uint32_t f = 0; f < g.faceCount; ++f)
-    for (int c = 0; c < 3; ++c)
-      if (g.faces[f][c] == tip) side[s.facePatch[f]] += g.cornerAngle(f, c);
   const double total = side[0] + side[1];
   CHECK(side[0] >= 0.375 * total - 1e-12);
   CHECK(side[1] >= 0.375 * total - 1e-12);
@@ -64,4 +73,27 @@ TEST_CASE("sink cuts: a finger is remeshed as two patches with the count its siz
     CHECK(r.report.minAngle >= o.minAngle);
     CHECK(r.report.topologyPreserved);
   }
+}
+
+TEST_CASE("sink cuts: cutThroughWideCorner cuts a patch in two disks from a border vertex, near the middle of its wedge") {
+  const EdgeGraph g = buildEdgeGraph(testshapes::square(8));
+  Segmentation s = segment(g, FeatureOptions{});
+  REQUIRE(s.patches.size() == 1);
+  uint32_t inside = kNone, mid = kNone;
+  for (uint32_t v = 0; v < g.vertexCount; ++v) {
+    if (std::abs(g.positions[v].x - 0.5) < 1e-12 && std::abs(g.positions[v].y - 0.5) < 1e-12) inside = v;
+    if (std::abs(g.positions[v].x - 0.5) < 1e-12 && std::abs(g.positions[v].y) < 1e-12) mid = v;
+  }
+  REQUIRE(inside != kNone);
+  REQUIRE(mid != kNone);
+  // a vertex on no curve has no wedge to cut through: nothing changes
+  const std::vector<EdgeKind> before = s.edgeKind;
+  CHECK_FALSE(cutThroughWideCorner(g, s, 0, inside, kPi / 3));
+  CHECK(s.edgeKind == before);
+
+  // the middle of the bottom side (a wedge of π)
+  REQUIRE(cutThroughWideCorner(g, s, 0, mid, kPi / 3));
+  const std::array<double, 2> side = twoDisksAround(g, s, mid);
+  CHECK(side[0] >= 0.375 * kPi - 1e-12);
+  CHECK(side[1] >= 0.375 * kPi - 1e-12);
 }
