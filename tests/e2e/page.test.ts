@@ -600,6 +600,22 @@ describe('demo page in headless Chromium', () => {
       const s = await canvasStats('canvas-flat', 'remeshed-flat-view');
       expect(s.variance).toBeGreaterThan(20);
     });
+
+    // organic scans at the page's defaults (ChineseDragon-10kv, the third model of issue 19, still
+    // keeps one triangle at 17° there: not asserted until it holds); the seconds are printed, not
+    // asserted (speed belongs to the benchmarks)
+    it('armadillo and man at the page defaults: no triangle below the bound outside exempt input corners', async () => {
+      for (const name of ['armadillo.off', 'man.off']) {
+        await page.setInputFiles('#file-input', join(root, '..', 'shared', 'data', name));
+        expect(await waitState(['loaded', 'error'], 30_000), name).toBe('loaded');
+        const t = await remeshWithProbe();
+        const seconds = t.remeshMs / 1000;
+        console.log(`${name} at the page defaults: ${seconds.toFixed(2)} s`);
+        expect(Number(await page.textContent('[data-testid=q-trianglesBelowBoundOutsideExempt]')), name).toBe(0);
+        expect(parseFloat((await page.textContent('[data-testid=q-minAngleOutsideExempt]')) ?? ''), name).toBeGreaterThanOrEqual(30);
+        expect(await errorsShown(), name).toEqual([]);
+      }
+    });
   } else {
     it.todo('remesh fandisk in the page (min angle ≥ 30°, 3 views drawn, frame gap < 100 ms): this build of the package has no remesh binding');
   }
