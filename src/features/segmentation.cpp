@@ -256,9 +256,8 @@ struct Cutter {
   }
 
   // Cut `patch` until every part is a disk, two parts at a time; counts the parts into
-  // patchCount. Halving only the parts that still need it: a partition into up to eight cells
-  // kept every cell of the first k whose cells were all disks, or all eight, cutting parts that
-  // were disks already (armadillo: 52 patches from 14 regions; halving: 28).
+  // patchCount. Only the parts that still need it are halved again: a part that is a disk stays
+  // whole, where a partition into many cells at once cuts them too (docs/decisions/0027).
   void toDisks(const std::vector<uint32_t>& patch, uint32_t& patchCount) {
     std::vector<std::vector<uint32_t>> todo{patch}, done;
     while (!todo.empty()) {
