@@ -166,9 +166,9 @@ bool cutThroughSink(const EdgeGraph& g, Segmentation& seg, uint32_t p, uint32_t 
 
 bool cutThroughWideCorner(const EdgeGraph& g, Segmentation& seg, uint32_t p, uint32_t v, double minWedge) {
   if (p >= seg.patches.size() || v >= g.vertexCount || !onCurve(g, seg, v)) return false;
-  // the wedge of p at v: from a curve edge with p's face on its left, face by face round v
-  // through p's faces to the next curve edge; its inner ring vertices with their angle from the
-  // first edge
+  // the wedge of p at v (a disk has one): from a curve edge beside one of p's faces, face by face
+  // round v through p's faces to the next curve edge; its inner ring vertices with their angle
+  // from the first edge
   uint32_t f = kNone, w = kNone;
   for (uint32_t k = g.vertexEdgeStart[v]; k < g.vertexEdgeStart[v + 1] && f == kNone; ++k) {
     const uint32_t e = g.vertexEdgeIds[k];
