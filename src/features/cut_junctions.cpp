@@ -95,6 +95,27 @@ bool keepCutsIfAllDisks(const EdgeGraph& g, Segmentation& seg, const std::vector
   for (EdgeKind kd : seg.edgeKind) seg.cutEdgeCount += kd == EdgeKind::Cut;
   return true;
 }
+
+// A vertex of `ends` left with one curve edge ends a cut branch that no longer separates
+// anything: the branch goes, edge by edge back to where it meets other curves, each edge handed
+// to `drop` (which unmarks it). False, at once, when a branch ends in a feature or boundary edge
+// (a feature's end would dangle) or more than `budget` edges would go.
+template <class Drop>
+bool pruneDanglingCuts(const EdgeGraph& g, const Segmentation& seg, const std::vector<uint32_t>& ends, size_t budget, Drop&& drop) {
+  size_t dropped = 0;
+  for (uint32_t x : ends)
+    for (;;) {
+      uint32_t only = kNone, n = 0;
+      for (uint32_t k = g.vertexEdgeStart[x]; k < g.vertexEdgeStart[x + 1]; ++k)
+        if (seg.isCurveEdge(g.vertexEdgeIds[k])) only = g.vertexEdgeIds[k], ++n;
+      if (n != 1) break;
+      if (seg.edgeKind[only] != EdgeKind::Cut || dropped > budget) return false;
+      drop(only);
+      ++dropped;
+      x = g.otherVertex(only, x);
+    }
+  return true;
+}
 }  // namespace
 
 uint32_t improveCutJunctions(const EdgeGraph& g, Segmentation& seg, double scale, const std::vector<uint32_t>& region) {
@@ -401,19 +422,7 @@ uint32_t straightenCutEars(const EdgeGraph& g, Segmentation& seg, const std::vec
           // a rim vertex left with one cut edge ends a branch that no longer separates
           // anything: the branch goes, back to where it meets other curves. A branch that would
           // leave a feature's end dangling keeps the old cut.
-          for (uint32_t x : rim) {
-            while (ok && valence(x) == 1) {
-              uint32_t only = kNone;
-              for (uint32_t k = g.vertexEdgeStart[x]; k < g.vertexEdgeStart[x + 1]; ++k)
-                if (seg.isCurveEdge(g.vertexEdgeIds[k])) only = g.vertexEdgeIds[k];
-              if (seg.edgeKind[only] != EdgeKind::Cut || toggled.size() > kMaxPrune) {
-                ok = false;
-                break;
-              }
-              toggle(only);
-              x = g.otherVertex(only, x);
-            }
-          }
+          ok = pruneDanglingCuts(g, seg, rim, kMaxPrune - toggled.size(), toggle);
           ok = ok && wedgeAround(v, rim) > before + kGain;
           // a move that took an old cut off the rim or pruned a branch regroups faces of more
           // than two patches: it is kept only when every patch it touches stays a disk
@@ -508,21 +517,7 @@ uint32_t absorbCutSlivers(const EdgeGraph& g, Segmentation& seg, double minAngle
             ends.push_back(g.edgeVerts[e][1]);
           }
         }
-      bool ok = true;
-      for (uint32_t x : ends) {
-        for (size_t guard = 0; ok; ++guard) {
-          uint32_t only = kNone, n = 0;
-          for (uint32_t k = g.vertexEdgeStart[x]; k < g.vertexEdgeStart[x + 1]; ++k)
-            if (seg.isCurveEdge(g.vertexEdgeIds[k])) only = g.vertexEdgeIds[k], ++n;
-          if (n != 1) break;
-          if (seg.edgeKind[only] != EdgeKind::Cut || guard > g.edgeCount()) {
-            ok = false;  // a feature's end would dangle
-            break;
-          }
-          seg.edgeKind[only] = EdgeKind::None;
-          x = g.otherVertex(only, x);
-        }
-      }
+      const bool ok = pruneDanglingCuts(g, seg, ends, g.edgeCount(), [&](uint32_t e) { seg.edgeKind[e] = EdgeKind::None; });
       if (ok) {
         rebuildCurves(g, seg);
         if (keepCutsIfAllDisks(g, seg, before)) {
