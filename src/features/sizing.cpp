@@ -48,6 +48,7 @@ SizingField computeSizing(const EdgeGraph& g, const Segmentation& seg, const Siz
   if (!(o.gradation > 1.0)) fail(Code::InvalidArgument, Stage::CurveMesh, "gradation must be > 1");
   if (!o.vertexSizing.empty() && o.vertexSizing.size() != g.vertexCount)
     fail(Code::InvalidArgument, Stage::CurveMesh, "vertexSizing needs one value per input vertex");
+  s.gradation = o.gradation;
   s.minLength = o.minEdgeLength > 0 ? o.minEdgeLength : 0.1 * s.target;
   s.maxLength = o.maxEdgeLength > 0 ? o.maxEdgeLength : s.target;
   if (s.minLength > s.maxLength)

@@ -42,6 +42,7 @@ struct SizingField {
   double target = 0;      //!< resolved target edge length
   double diagonal = 0;    //!< bbox diagonal
   double minLength = 0, maxLength = 0;
+  double gradation = 1.5;  //!< the option used
 };
 
 //! Per vertex, the largest normal curvature 2|n·d|/|d|² over its edges d (n: the area-weighted

@@ -1,8 +1,12 @@
 #include "remesh/limits.h"
 
+#include <algorithm>
+#include <array>
 #include <cmath>
 #include <cstdio>
 #include <string>
+
+#include "features/patch_width.h"
 
 namespace conformesh {
 namespace {
@@ -21,9 +25,33 @@ void requireLimit(double value, const char* name) {
          std::string(name) + " must be >= 1 (0 does not mean unlimited: pass a huge value to lift the limit)");
 }
 
+// The part of ∫ 1/h² that the thin features add to the field (see estimateOutput).
+double thinFeatureIntegral(const features::EdgeGraph& g, const features::Segmentation& seg,
+                           const features::SizingField& sizing) {
+  const double k = sizing.gradation - 1.0;
+  const std::vector<std::array<double, 2>> width = features::patchWidths(g, seg, sizing.maxLength);
+  double sum = 0;
+  for (uint32_t e = 0; e < g.edgeCount(); ++e) {
+    const auto& w = width[e];
+    const auto& ev = g.edgeVerts[e];
+    const double h = std::min(sizing.h[ev[0]], sizing.h[ev[1]]);
+    // the edge's own size: the narrower side (a thin strip's neighbour is sampled as finely)
+    const double a = std::max(std::min({h, w[0], w[1]}), sizing.minLength * 1e-3);
+    if (!(a < h)) continue;
+    const double len = g.edgeLength(e);
+    for (int side = 0; side < 2; ++side) {
+      if (side == 1 && g.isBoundary(e)) break;
+      const double d = std::min((h - a) / k, 0.5 * w[side]);
+      sum += len * ((1.0 / a - 1.0 / (a + k * d)) / k - d / (h * h));
+    }
+  }
+  return sum;
+}
+
 }  // namespace
 
-OutputEstimate estimateOutput(const features::EdgeGraph& g, const features::SizingField& sizing) {
+OutputEstimate estimateOutput(const features::EdgeGraph& g, const features::Segmentation& seg,
+                              const features::SizingField& sizing) {
   const double equilateral = std::sqrt(3.0) / 4.0;
   OutputEstimate e;
   for (uint32_t f = 0; f < g.faceCount; ++f) {
@@ -31,6 +59,7 @@ OutputEstimate estimateOutput(const features::EdgeGraph& g, const features::Sizi
     for (uint32_t v : g.faces[f]) invH2 += 1.0 / (3.0 * sizing.h[v] * sizing.h[v]);
     e.triangles += g.faceArea(f) * invH2 / equilateral;
   }
+  e.triangles += thinFeatureIntegral(g, seg, sizing) / equilateral;
   e.triangles *= kTrianglesPerEquilateral;
   double boundarySamples = 0;
   for (uint32_t k = 0; k < g.edgeCount(); ++k) {

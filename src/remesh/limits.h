@@ -7,6 +7,7 @@
 #include <cstddef>
 
 #include "features/edge_graph.h"
+#include "features/segmentation.h"
 #include "features/sizing.h"
 #include "remesh/remesh.h"
 
@@ -30,16 +31,25 @@ constexpr double kBytesPerOutputTriangle = 250.0;
 constexpr double kTrianglesPerEquilateral = 1.3;
 
 //! Predict the output of remesh from the sizing field (before flattening and refinement).
-//!   triangles = 1.3 · Σ over input faces f of area(f) / (√3/4 · h_f²): the integral of one over
-//!               the area of an equilateral triangle of the local target edge length, with 1/h_f²
-//!               the mean of 1/h² at the face's corners, times kTrianglesPerEquilateral;
+//!   triangles = 1.3 · ∫ 1 / (√3/4 · h²) over the surface: the number of equilateral triangles of
+//!               the local target edge length h, times kTrianglesPerEquilateral. The integral has
+//!               two parts:
+//!               - the field as computed, Σ over input faces f of area(f) / (√3/4 · h_f²), with
+//!                 1/h_f² the mean of 1/h² at the face's corners;
+//!               - the grading the angle bound needs at thin features: where a patch is narrower
+//!                 across from a boundary edge than h there (features/patch_width.h), the
+//!                 refinement samples the edge at that width w and grows the sizes away from it
+//!                 at the field's gradation slope k, up to h or halfway across the patch. The
+//!                 excess over h of that field, integrated in closed form along the edge and
+//!                 away from it on each side (its own width w_s there):
+//!                 len · [(1/k)(1/a − 1/(a + k·D)) − D/h²], a = min(h, w), D = min((h − a)/k, w_s/2);
 //!   vertices  = triangles / 2 + Σ over boundary edges of length / h (closed surfaces have
 //!               V ≈ F/2; every boundary sample adds half a vertex more);
 //!   bytes     = kBytesPerInputTriangle · input triangles + kBytesPerOutputTriangle · triangles.
-//! A prediction, not a bound: parts narrower than the target edge length get more triangles than
-//! their area says (a 1000 × 1 strip at target 20: 8 predicted, 1593 made), which is why the real
-//! counts are checked again after refinement. Pre: sizing.h has one positive value per vertex of g.
-OutputEstimate estimateOutput(const features::EdgeGraph& g, const features::SizingField& sizing);
+//! A prediction, not a bound: the real counts are checked again after refinement. Pre: sizing.h
+//! has one positive value per vertex of g; seg is g's segmentation.
+OutputEstimate estimateOutput(const features::EdgeGraph& g, const features::Segmentation& seg,
+                              const features::SizingField& sizing);
 
 //! A first estimate from the target edge length alone (curvature only adds triangles), for the
 //! checks before the input is preconditioned: the same formulas with h = target everywhere.

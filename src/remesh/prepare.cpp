@@ -152,7 +152,7 @@ Surface prepareSurface(ValidatedMesh vm, const MeshBuffers& input, const RemeshO
   }
   surf.sizing = F::computeSizing(surf.g, surf.seg, so);
   {  // output size and memory limits, before the heavy work (remesh/limits.h)
-    const OutputEstimate est = estimateOutput(surf.g, surf.sizing);
+    const OutputEstimate est = estimateOutput(surf.g, surf.seg, surf.sizing);
     rep.estimatedTriangles = est.triangles;
     checkOutputEstimate(est, opt);
   }

@@ -49,6 +49,18 @@ inline MeshBuffers cube(int n, double s = 1.0) {
   return b.m;
 }
 
+//! The box [0, sx] × [0, sy] × [0, sz]: cube(n) scaled along each axis (a thin slab when one side
+//! is small: its rim is a strip of creases that close together).
+inline MeshBuffers box(int n, double sx, double sy, double sz) {
+  MeshBuffers m = cube(n);
+  for (size_t i = 0; i < m.positions.size(); i += 3) {
+    m.positions[i] *= sx;
+    m.positions[i + 1] *= sy;
+    m.positions[i + 2] *= sz;
+  }
+  return m;
+}
+
 //! Closed cylinder: radius r, height h, m segments around, k rings along the axis, flat caps
 //! made of rings too (c rings from the centre).
 inline MeshBuffers cylinder(int m, int k, int c, double r = 0.5, double h = 1.0) {

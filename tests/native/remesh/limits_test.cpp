@@ -66,6 +66,22 @@ TEST_CASE("remesh limits: a generous limit passes, and the estimate is close to 
   CHECK(remesh(testshapes::cube(4), o).status.ok());
 }
 
+TEST_CASE("remesh limits: the estimate counts the grading at a thin strip") {
+  // a 1 × 1 × t slab: its rim is four strips of width t between creases, far narrower than the
+  // target edge length; the refinement samples them at about t and grades away from them
+  RemeshOptions o;
+  o.targetEdgeLengthRel = 0.05;
+  o.computeHausdorff = false;
+  for (double t : {0.02, 0.005}) {
+    RemeshResult r = remesh(testshapes::box(4, 1.0, 1.0, t), o);
+    REQUIRE_MESSAGE(r.status.ok(), r.status.message);
+    const double real = double(r.report.triangles), est = r.report.estimatedTriangles;
+    INFO("thickness " << t << ": estimated " << est << ", real " << real);
+    CHECK(real >= 0.75 * est);
+    CHECK(real <= 1.33 * est);
+  }
+}
+
 TEST_CASE("remesh limits: 0 is not 'unlimited' but InvalidArgument; real counts are checked") {
   RemeshOptions o;
   o.maxTriangles = 0;

@@ -1,0 +1,66 @@
+#include "features/patch_width.h"
+
+#include <cmath>
+#include <limits>
+
+#include "quality/aabb_tree.h"
+
+namespace conformesh::features {
+
+namespace {
+
+// |cos| of the angle between a crossing and an edge's tangent above which the edge is not
+// crossed but followed: 60° off the normal
+constexpr double kAcrossCos = 0.5;
+
+}  // namespace
+
+std::vector<std::array<double, 2>> patchWidths(const EdgeGraph& g, const Segmentation& seg, double maxDistance) {
+  constexpr double kInf = std::numeric_limits<double>::infinity();
+  std::vector<std::array<double, 2>> width(g.edgeCount(), {kInf, kInf});
+  // boundary edges (edge, side) of each patch: its face on that side is in the patch, the other
+  // side is another patch or nothing
+  const size_t patchCount = seg.patches.size();
+  std::vector<std::vector<std::pair<uint32_t, int>>> border(patchCount);
+  for (uint32_t e = 0; e < g.edgeCount(); ++e) {
+    const auto& ef = g.edgeFaces[e];
+    const uint32_t p0 = seg.facePatch[ef[0]], p1 = ef[1] == kNone ? kNone : seg.facePatch[ef[1]];
+    if (p0 == p1) continue;
+    border[p0].push_back({e, 0});
+    if (p1 != kNone) border[p1].push_back({e, 1});
+  }
+  const double bound = maxDistance * maxDistance;
+  for (const auto& edges : border) {
+    if (edges.size() < 3) continue;
+    quality::AabbTree tree;
+    tree.build(edges.size(), [&](uint32_t i) {
+      quality::Box3 b;
+      for (uint32_t v : g.edgeVerts[edges[i].first]) b.add(g.positions[v]);
+      return b;
+    });
+    for (const auto& [e, side] : edges) {
+      const auto& ev = g.edgeVerts[e];
+      const Vec3 a = g.positions[ev[0]], b = g.positions[ev[1]];
+      const double len = norm(b - a);
+      if (len == 0) continue;
+      const Vec3 m = (a + b) * 0.5, te = (b - a) * (1.0 / len);
+      const quality::ClosestHit hit = tree.closest(m, [&](uint32_t i, const Vec3& p) {
+        const uint32_t f = edges[i].first;
+        const auto& fv = g.edgeVerts[f];
+        if (f == e) return kInf;
+        const Vec3 c = g.positions[fv[0]], d = g.positions[fv[1]];
+        const double lf = norm(d - c);
+        const Vec3 y = quality::closestPointOnSegment(p, c, d), across = y - p;
+        const double dist = norm(across);
+        if (lf == 0 || dist == 0) return kInf;
+        if (std::abs(dot(across, te)) > kAcrossCos * dist) return kInf;
+        if (std::abs(dot(across, d - c)) > kAcrossCos * dist * lf) return kInf;
+        return dist * dist;
+      }, bound);
+      if (hit.primitive >= 0) width[e][side] = std::sqrt(hit.distanceSquared);
+    }
+  }
+  return width;
+}
+
+}  // namespace conformesh::features
