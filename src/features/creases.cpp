@@ -58,12 +58,18 @@ bool isLine(double length, uint32_t edges, const CreaseOptions& o) {
 }
 
 // The outlier faces' candidate pairs (creases.h) made no candidates: those meeting below
-// tipLimit whose faces across bend by at most limit, neither edge in keep. Decided from the
+// tipLimit whose faces across bend by at most limit, neither edge in keep; and the candidate
+// edge of a flap whose corners on it are below tipLimit, unless it is in keep. Decided from the
 // candidates as given, so the result does not depend on the face order.
 void dropOutlierFaces(const EdgeGraph& g, double limit, double tipLimit, const std::vector<uint8_t>& keep, Creases& out) {
   std::vector<uint32_t> drop;
   for (uint32_t f = 0; f < g.faceCount; ++f) {
     const auto& fe = g.faceEdges[f];
+    for (int i = 0; i < 3; ++i) {  // a flap: its other two edges on the boundary
+      const uint32_t e = fe[i];
+      if (!out.edge[e] || keep[e] || !g.isBoundary(fe[(i + 1) % 3]) || !g.isBoundary(fe[(i + 2) % 3])) continue;
+      if (g.cornerAngle(f, i) < tipLimit && g.cornerAngle(f, (i + 1) % 3) < tipLimit) drop.push_back(e);
+    }
     for (int i = 0; i < 3; ++i)
       for (int j = i + 1; j < 3; ++j) {
         if (!out.edge[fe[i]] || !out.edge[fe[j]] || keep[fe[i]] || keep[fe[j]]) continue;

@@ -12,6 +12,9 @@
 //     those two neighbours, so its own normal is the artifact (a needle whose normal its
 //     vertices' noise swings, or a face folded over), and the two edges are no candidates,
 //     unless one of them is on a line (below): a CAD face between two of its lines is real;
+//     likewise a flap: a face hanging on the boundary by one candidate edge (its other two
+//     edges on the boundary) with both corners there below outlierTipDeg, a sliver whose
+//     normal is noise and whose crease would only wall it off behind two exempt corners;
 //   * contrast: an edge's dihedral against the median dihedral of the edges around its two ends
 //     (its own chain excluded): a crease stands out of a smooth neighbourhood, a facet of a
 //     coarse surface does not;

@@ -100,6 +100,33 @@ TEST_CASE("creases: a needle face tilted out of a flat sheet makes no crease; wi
   CHECK(detectCreases(g, o).creaseEdges >= 2);
 }
 
+TEST_CASE("creases: a sliver flap bent off the boundary makes no crease; a real tab does") {
+  // a flat grid and one more face on a boundary edge (a, b), bent down by about 50°: a sliver
+  // (corners of 14° at a and b) or a tab (corners of 68°)
+  for (double offset : {0.01, 0.1}) {
+    MeshBuffers m = testshapes::square(8);
+    uint32_t a = kNone, b = kNone;
+    for (size_t t = 0; t < m.triangles.size() && a == kNone; t += 3)
+      for (int i = 0; i < 3; ++i) {
+        const uint32_t u = m.triangles[t + i], v = m.triangles[t + (i + 1) % 3];
+        if (m.positions[3 * u + 1] == 0 && m.positions[3 * v + 1] == 0 && m.positions[3 * u] > 0.3) a = u, b = v;
+      }
+    REQUIRE(a != kNone);
+    const double q[3] = {0.5 * (m.positions[3 * a] + m.positions[3 * b]), -offset, -1.2 * offset};
+    const uint32_t qi = uint32_t(m.vertexCount());
+    m.positions.insert(m.positions.end(), q, q + 3);
+    m.triangles.insert(m.triangles.end(), {b, a, qi});
+    const EdgeGraph g = buildEdgeGraph(m);
+    const uint32_t e = g.findEdge(a, b);
+    CreaseOptions o;
+    o.minLength = 0.5;
+    const Creases c = detectCreases(g, o);
+    REQUIRE(c.candidates == 1);
+    INFO("offset " << offset);
+    CHECK(c.edge[e] == (offset > 0.05 ? 1 : 0));
+  }
+}
+
 TEST_CASE("creases: options out of range are InvalidArgument") {
   EdgeGraph g = buildEdgeGraph(testshapes::cube(2));
   CreaseOptions o;
