@@ -102,32 +102,29 @@ uint32_t scaleSink(const F::PatchMesh& pm, const std::vector<double>& u) {
   return pm.vertexInput[size_t(std::min_element(u.begin(), u.end()) - u.begin())];
 }
 
-// The input vertex on patch mesh pm's border with the widest 3D wedge above 2π − kConeGap (kNone
-// for none).
-uint32_t widestCorner(const F::PatchMesh& pm) {
-  const std::vector<double> angle = cornerWedgeAngles(pm);
-  uint32_t best = kNone;
-  double widest = 2 * kPi - kConeGap;
-  for (const auto& loop : pm.boundaryLoops)
-    for (const auto& h : loop) {
-      const uint32_t v = pm.mesh.triangles[3 * h.face + h.corner];
-      if (angle[v] > widest) widest = angle[v], best = pm.vertexInput[v];
-    }
-  return best;
-}
+// The vertices of patch mesh pm too far from flat for its layout (input vertices, kNone for none):
+// the border vertex whose 3D wedge is widest above 2π − kConeGap, and the interior vertex whose
+// angle sum is smallest below it.
+struct FarFromFlat {
+  uint32_t widestCorner = kNone;
+  uint32_t sharpestCone = kNone;
+};
 
-// The input vertex inside patch mesh pm (off its border) with the smallest 3D angle sum below
-// 2π − kConeGap (kNone for none).
-uint32_t sharpestCone(const F::PatchMesh& pm) {
+FarFromFlat farFromFlat(const F::PatchMesh& pm) {
   const std::vector<double> angle = cornerWedgeAngles(pm);
   std::vector<uint8_t> border(angle.size(), 0);
   for (const auto& loop : pm.boundaryLoops)
     for (const auto& h : loop) border[pm.mesh.triangles[3 * h.face + h.corner]] = 1;
-  uint32_t best = kNone;
-  double sharpest = 2 * kPi - kConeGap;
+  FarFromFlat far;
+  double widest = 2 * kPi - kConeGap, sharpest = 2 * kPi - kConeGap;
+  for (const auto& loop : pm.boundaryLoops)
+    for (const auto& h : loop) {
+      const uint32_t v = pm.mesh.triangles[3 * h.face + h.corner];
+      if (angle[v] > widest) widest = angle[v], far.widestCorner = pm.vertexInput[v];
+    }
   for (uint32_t v = 0; v < angle.size(); ++v)
-    if (!border[v] && angle[v] < sharpest) sharpest = angle[v], best = pm.vertexInput[v];
-  return best;
+    if (!border[v] && angle[v] < sharpest) sharpest = angle[v], far.sharpestCone = pm.vertexInput[v];
+  return far;
 }
 
 // A hash of which input edges are curves of which kind (FNV-1a).
@@ -345,9 +342,10 @@ Patches flattenPatches(Surface& surf, const RemeshOptions& opt, const Progress& 
         if (f.error) std::rethrow_exception(f.error);
         // a failed flattening: cut through a vertex too far from flat (kConeGap) before splitting
         // around it
+        const FarFromFlat far = f.splitAsked || !f.flattened ? farFromFlat(f.w->pm) : FarFromFlat{};
         if ((f.splitAsked || !f.flattened) &&
-            (F::cutThroughWideCorner(surf.g, surf.seg, p, widestCorner(f.w->pm), minWedge) ||
-             F::cutThroughSink(surf.g, surf.seg, p, sharpestCone(f.w->pm), minWedge))) {
+            (F::cutThroughWideCorner(surf.g, surf.seg, p, far.widestCorner, minWedge) ||
+             F::cutThroughSink(surf.g, surf.seg, p, far.sharpestCone, minWedge))) {
           ++rep.patchSplitsForScale;
           rep.warnings.push_back("patch cut through a vertex far from flat after: " + f.lastError);
           split = true;
