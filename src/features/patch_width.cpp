@@ -38,7 +38,9 @@ std::vector<std::array<double, 2>> patchWidths(const EdgeGraph& g, const Segment
       for (uint32_t v : g.edgeVerts[edges[i].first]) b.add(g.positions[v]);
       return b;
     });
-    for (const auto& [e, side] : edges) {
+    for (const auto& edgeSide : edges) {
+      const uint32_t e = edgeSide.first;  // not a structured binding: lambdas capture it (C++17)
+      const int side = edgeSide.second;
       const auto& ev = g.edgeVerts[e];
       const Vec3 a = g.positions[ev[0]], b = g.positions[ev[1]];
       const double len = norm(b - a);
