@@ -1,5 +1,6 @@
 #include "features/cut_junctions.h"
 #include "core/constants.h"
+#include "core/union_find.h"
 
 #include <algorithm>
 #include <cmath>
@@ -539,6 +540,110 @@ uint32_t absorbCutSlivers(const EdgeGraph& g, Segmentation& seg, double minAngle
   seg.cutEdgeCount = 0;
   for (EdgeKind kd : seg.edgeKind) seg.cutEdgeCount += kd == EdgeKind::Cut;
   return absorbed;
+}
+
+uint32_t moveNarrowCutWedges(const EdgeGraph& g, Segmentation& seg, double minAngle, const std::vector<uint32_t>& region) {
+  std::vector<uint32_t> verts;
+  if (region.empty()) {
+    for (uint32_t v = 0; v < g.vertexCount; ++v) verts.push_back(v);
+  } else {
+    for (uint32_t f : region)
+      for (uint32_t v : g.faces[f]) verts.push_back(v);
+    std::sort(verts.begin(), verts.end());
+    verts.erase(std::unique(verts.begin(), verts.end()), verts.end());
+  }
+  const auto isCurve = [&](uint32_t e) { return seg.isCurveEdge(e); };
+  WedgeScratch scratch;
+  uint32_t moved = 0;
+  std::vector<uint32_t> star;
+  for (uint32_t v : verts) {
+    bool cut = false;
+    for (uint32_t k = g.vertexEdgeStart[v]; k < g.vertexEdgeStart[v + 1]; ++k)
+      cut = cut || seg.edgeKind[g.vertexEdgeIds[k]] == EdgeKind::Cut;
+    if (!cut || smallestWedge(g, v, isCurve, scratch) >= minAngle) continue;
+    // the wedges at v: its faces joined across the edges at v that are no curve
+    star.clear();
+    for (uint32_t k = g.vertexEdgeStart[v]; k < g.vertexEdgeStart[v + 1]; ++k)
+      for (uint32_t f : g.edgeFaces[g.vertexEdgeIds[k]])
+        if (f != kNone) star.push_back(f);
+    std::sort(star.begin(), star.end());
+    star.erase(std::unique(star.begin(), star.end()), star.end());
+    UnionFind wedge(star.size());
+    const auto slot = [&](uint32_t f) { return uint32_t(std::lower_bound(star.begin(), star.end(), f) - star.begin()); };
+    for (uint32_t k = g.vertexEdgeStart[v]; k < g.vertexEdgeStart[v + 1]; ++k) {
+      const uint32_t e = g.vertexEdgeIds[k];
+      if (!seg.isCurveEdge(e) && !g.isBoundary(e)) wedge.unite(slot(g.edgeFaces[e][0]), slot(g.edgeFaces[e][1]));
+    }
+    std::vector<double> angle(star.size(), 0.0);
+    for (uint32_t i = 0; i < star.size(); ++i)
+      for (int c = 0; c < 3; ++c)
+        if (g.faces[star[i]][c] == v) angle[wedge.find(i)] += g.cornerAngle(star[i], c);
+    for (uint32_t root = 0; root < star.size(); ++root) {
+      if (wedge.find(root) != root || angle[root] >= minAngle) continue;
+      std::vector<uint32_t> faces;
+      for (uint32_t i = 0; i < star.size(); ++i)
+        if (wedge.find(i) == root) faces.push_back(star[i]);
+      const uint32_t p = seg.facePatch[faces[0]];
+      // its cut sides at v with another patch across, longest first
+      std::vector<uint32_t> sides;
+      for (uint32_t k = g.vertexEdgeStart[v]; k < g.vertexEdgeStart[v + 1]; ++k) {
+        const uint32_t e = g.vertexEdgeIds[k];
+        if (seg.edgeKind[e] != EdgeKind::Cut || g.isBoundary(e)) continue;
+        const uint32_t a = g.edgeFaces[e][0], b = g.edgeFaces[e][1];
+        const bool inA = std::find(faces.begin(), faces.end(), a) != faces.end();
+        const bool inB = std::find(faces.begin(), faces.end(), b) != faces.end();
+        if (inA != inB && seg.facePatch[inA ? b : a] != p) sides.push_back(e);
+      }
+      std::sort(sides.begin(), sides.end(), [&](uint32_t a, uint32_t b) {
+        return g.edgeLength(a) > g.edgeLength(b) || (g.edgeLength(a) == g.edgeLength(b) && a < b);
+      });
+      const uint32_t movedBefore = moved;
+      for (uint32_t e : sides) {
+        const std::vector<EdgeKind> before = seg.edgeKind;
+        // the vertices whose wedges change, and how narrow they were
+        std::vector<std::pair<uint32_t, double>> watch{{v, 0.0}};
+        seg.edgeKind[e] = EdgeKind::None;
+        watch.push_back({g.otherVertex(e, v), 0.0});
+        for (uint32_t f : faces)
+          for (uint32_t x : g.faceEdges[f]) {
+            if (g.edgeVerts[x][0] == v || g.edgeVerts[x][1] == v || seg.edgeKind[x] != EdgeKind::None) continue;
+            const uint32_t o = g.edgeFaces[x][0] == f ? g.edgeFaces[x][1] : g.edgeFaces[x][0];
+            if (o == kNone || seg.facePatch[o] != p || std::find(faces.begin(), faces.end(), o) != faces.end()) continue;
+            seg.edgeKind[x] = EdgeKind::Cut;
+            for (uint32_t w : g.edgeVerts[x]) watch.push_back({w, 0.0});
+          }
+        // a cut left with no other curve at v (or at e's far end) goes back to where it meets one
+        if (!pruneDanglingCuts(g, seg, {v, g.otherVertex(e, v)}, g.edgeCount(), [&](uint32_t x) { seg.edgeKind[x] = EdgeKind::None; })) {
+          seg.edgeKind = before;
+          continue;
+        }
+        std::sort(watch.begin(), watch.end());
+        watch.erase(std::unique(watch.begin(), watch.end(), [](const auto& a, const auto& b) { return a.first == b.first; }), watch.end());
+        {  // the wedges as they were
+          std::vector<EdgeKind> now = seg.edgeKind;
+          seg.edgeKind = before;
+          for (auto& [w, a] : watch) a = smallestWedge(g, w, isCurve, scratch);
+          seg.edgeKind = std::move(now);
+        }
+        rebuildCurves(g, seg);
+        bool ok = keepCutsIfAllDisks(g, seg, before);
+        for (const auto& [w, a] : watch)
+          ok = ok && smallestWedge(g, w, isCurve, scratch) >= std::min(minAngle, a) && !(w == v && smallestWedge(g, w, isCurve, scratch) <= a);
+        if (ok) {
+          ++moved;
+          break;
+        }
+        if (seg.edgeKind != before) {
+          seg.edgeKind = before;
+          rebuildCurves(g, seg);
+        }
+      }
+      if (moved > movedBefore) break;  // the wedges at v changed: the next vertex
+    }
+  }
+  seg.cutEdgeCount = 0;  // keepCutsIfAllDisks counted a move that was then undone
+  for (EdgeKind kd : seg.edgeKind) seg.cutEdgeCount += kd == EdgeKind::Cut;
+  return moved;
 }
 
 }  // namespace conformesh::features

@@ -41,6 +41,15 @@ uint32_t straightenCutEars(const EdgeGraph& g, Segmentation& seg, const std::vec
 //! Returns the number of patches absorbed. `region` (input faces; empty: all): only its patches.
 uint32_t absorbCutSlivers(const EdgeGraph& g, Segmentation& seg, double minAngle, const std::vector<uint32_t>& region = {});
 
+//! A wedge narrower than minAngle (radians) at a vertex, between a cut and another curve, inside
+//! a larger patch (two needles between cuts routed along a fan of them: no mesh of the wedge
+//! keeps the bound, and refining towards it splits the cuts tens of times): its faces join the
+//! patch across the cut, whose border then runs along the wedge's far edges. Kept when every
+//! patch it touches stays a disk and no wedge at the vertices it changes gets narrower than the
+//! narrower of minAngle and what it was. Returns the number of wedges moved. `region` (input
+//! faces; empty: all): only the vertices of its faces.
+uint32_t moveNarrowCutWedges(const EdgeGraph& g, Segmentation& seg, double minAngle, const std::vector<uint32_t>& region = {});
+
 //! The number of patches the faces `faces` lie in.
 size_t patchesOver(const Segmentation& seg, const std::vector<uint32_t>& faces);
 

@@ -606,6 +606,7 @@ Segmentation segment(const EdgeGraph& g, const FeatureOptions& options, const Pr
   mergeCloseJunctions(g, seg, kCloseJunctionFactor * seg.junctionScale);
   straightenCutEars(g, seg);
   absorbCutSlivers(g, seg, seg.angleBoundDeg * kPi / 180);
+  moveNarrowCutWedges(g, seg, seg.angleBoundDeg * kPi / 180);
   if (progress && !progress(Stage::Segment, 1.0)) fail(Code::Cancelled, Stage::Segment, "cancelled");
   return seg;
 }
@@ -625,25 +626,22 @@ bool splitPatch(const EdgeGraph& g, Segmentation& seg, uint32_t p, uint32_t part
   rebuildCurves(g, seg);
   improveCutJunctions(g, seg, seg.junctionScale, region);
   mergeCloseJunctions(g, seg, kCloseJunctionFactor * seg.junctionScale, region);
-  // Straightening the new cuts must not leave the split patch whole again (a pruned branch that
+  // The repairs of the new cuts must not leave the split patch whole again (a pruned branch that
   // separated its parts): the split would be undone, and redone at the next flattening, without
-  // end. Such moves are not made (a sliver part inside a wedge may go); a straightening that
+  // end. Straightening makes no such move (a sliver part inside a wedge may go); a repair that
   // leaves one patch all the same is dropped.
-  const std::vector<EdgeKind> split = seg.edgeKind;
-  const uint32_t cutEdges = seg.cutEdgeCount;
-  if (straightenCutEars(g, seg, region, true) > 0 && patchesOver(seg, region) < 2) {
-    seg.edgeKind = split;
-    seg.cutEdgeCount = cutEdges;
-    rebuildCurves(g, seg);
-  }
-  // so must absorbing the slivers it left
-  const std::vector<EdgeKind> straightened = seg.edgeKind;
-  const uint32_t straightenedCuts = seg.cutEdgeCount;
-  if (absorbCutSlivers(g, seg, seg.angleBoundDeg * kPi / 180, region) > 0 && patchesOver(seg, region) < 2) {
-    seg.edgeKind = straightened;
-    seg.cutEdgeCount = straightenedCuts;
-    rebuildCurves(g, seg);
-  }
+  const auto keepingSplit = [&](auto&& repair) {
+    const std::vector<EdgeKind> before = seg.edgeKind;
+    const uint32_t cutEdges = seg.cutEdgeCount;
+    if (repair() > 0 && patchesOver(seg, region) < 2) {
+      seg.edgeKind = before;
+      seg.cutEdgeCount = cutEdges;
+      rebuildCurves(g, seg);
+    }
+  };
+  keepingSplit([&] { return straightenCutEars(g, seg, region, true); });
+  keepingSplit([&] { return absorbCutSlivers(g, seg, seg.angleBoundDeg * kPi / 180, region); });
+  keepingSplit([&] { return moveNarrowCutWedges(g, seg, seg.angleBoundDeg * kPi / 180, region); });
   return true;
 }
 

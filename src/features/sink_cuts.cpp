@@ -121,6 +121,7 @@ bool applyCuts(const EdgeGraph& g, Segmentation& seg, uint32_t p, const std::vec
   mergeCloseJunctions(g, seg, kCloseJunctionFactor * seg.junctionScale, region);
   straightenCutEars(g, seg, region, true);
   absorbCutSlivers(g, seg, seg.angleBoundDeg * kPi / 180, region);
+  moveNarrowCutWedges(g, seg, seg.angleBoundDeg * kPi / 180, region);
   bool ok = patchesOver(seg, region) >= 2 && seg.patches.size() > patchesBefore;
   if (ok) {
     const std::vector<uint8_t> mask = seg.curveMask();

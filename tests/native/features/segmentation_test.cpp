@@ -19,6 +19,7 @@
 #include "features/cut_junctions.h"
 #include "features/sizing.h"
 #include "features/test_shapes.h"
+#include "features/wedges.h"
 #include "mesh/mesh_io.h"
 
 using namespace conformesh;
@@ -701,5 +702,56 @@ TEST_CASE("features: absorbCutSlivers joins a face cut all round to its neighbou
   CHECK(absorbCutSlivers(g, s, 50.0 * kPi / 180) == 1);
   CHECK(s.patches.size() == 1);
   CHECK(s.cutEdgeCount == 0);
+  checkPatchesAreDisks(g, s);
+}
+
+TEST_CASE("features: moveNarrowCutWedges gives a wedge below the bound between two cuts to the patch across one") {
+  // a square grid cut along y = 1/2 and along the diagonal from its centre v to the corner
+  // (1, 1): the patch between the two right of v has a 45-degree corner at v
+  const int n = 6;
+  const EdgeGraph g = buildEdgeGraph(testshapes::square(n));
+  Segmentation s = segment(g, FeatureOptions{});
+  REQUIRE(s.patches.size() == 1);
+  const uint32_t v = vertexAt(g, 0.5, 0.5);
+  const auto cutPath = [&](const std::vector<std::pair<int, int>>& at) {
+    for (size_t i = 0; i + 1 < at.size(); ++i) {
+      const uint32_t e = g.findEdge(vertexAt(g, at[i].first / double(n), at[i].second / double(n)),
+                                    vertexAt(g, at[i + 1].first / double(n), at[i + 1].second / double(n)));
+      REQUIRE(e != kNone);
+      s.edgeKind[e] = EdgeKind::Cut;
+    }
+  };
+  cutPath({{0, 3}, {1, 3}, {2, 3}, {3, 3}, {4, 3}, {5, 3}, {6, 3}});
+  cutPath({{3, 3}, {4, 4}, {5, 5}, {6, 6}});
+  rebuildCurves(g, s);
+  REQUIRE(s.patches.size() == 3);
+  const auto smallest = [&](uint32_t x) {
+    WedgeScratch w;
+    return smallestWedge(g, x, [&](uint32_t e) { return s.isCurveEdge(e); }, w);
+  };
+  REQUIRE(smallest(v) == doctest::Approx(kPi / 4));
+  const std::vector<EdgeKind> cut = s.edgeKind;
+  CHECK(moveNarrowCutWedges(g, s, 40.0 * kPi / 180) == 0);  // 45 degrees: nothing to move at this bound
+  CHECK(s.edgeKind == cut);
+  const uint32_t wedgeFace = [&] {  // the face in the wedge at v
+    for (uint32_t f = 0; f < g.faceCount; ++f)
+      if (std::count(g.faces[f].begin(), g.faces[f].end(), v) && std::count(g.faces[f].begin(), g.faces[f].end(), vertexAt(g, 4.0 / n, 0.5)) &&
+          std::count(g.faces[f].begin(), g.faces[f].end(), vertexAt(g, 4.0 / n, 4.0 / n)))
+        return f;
+    return kNone;
+  }();
+  REQUIRE(wedgeFace != kNone);
+  const uint32_t topLeft = s.facePatch[std::find_if(s.patches.begin(), s.patches.end(), [&](const auto& faces) {
+                                         return std::any_of(faces.begin(), faces.end(), [&](uint32_t f) { return g.faceCentroid(f).x < 0.3 && g.faceCentroid(f).y > 0.6; });
+                                       })->front()];
+  // v's wedge, and the diagonal's at the corner (1, 1), where it meets the border at 45 degrees
+  CHECK(moveNarrowCutWedges(g, s, 50.0 * kPi / 180) == 2);
+  CHECK(s.patches.size() == 3);
+  CHECK(s.facePatch[wedgeFace] == topLeft);  // across the longer side, the diagonal
+  CHECK(smallest(v) >= 50.0 * kPi / 180);
+  for (uint32_t x = 0; x < g.vertexCount; ++x) CHECK(smallest(x) >= 45.0 * kPi / 180 - 1e-12);
+  uint32_t cuts = 0;
+  for (EdgeKind k : s.edgeKind) cuts += k == EdgeKind::Cut;
+  CHECK(s.cutEdgeCount == cuts);
   checkPatchesAreDisks(g, s);
 }
