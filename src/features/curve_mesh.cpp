@@ -1,4 +1,5 @@
 #include "features/curve_mesh.h"
+#include "core/constants.h"
 #include "core/detmath.h"
 
 #include <algorithm>
@@ -26,6 +27,31 @@ uint32_t segmentCount(const EdgeGraph& g, const Curve& c, const SizingField& s) 
   for (size_t i = 0; i < c.edges.size(); ++i)
     total += edgeIntegral(g.edgeLength(c.edges[i]), s.h[c.vertices[i]], s.h[c.vertices[i + 1]]);
   return uint32_t(std::max<double>(1.0, std::round(total)));
+}
+
+// The point of curve cu at integral `target` of ds/h from its start (edgeI: per edge).
+Vec3 pointAt(const EdgeGraph& g, const Curve& cu, const SizingField& s, const std::vector<double>& edgeI, double target) {
+  size_t j = 0;
+  double before = 0;
+  while (j + 1 < cu.edges.size() && before + edgeI[j] < target) before += edgeI[j++];
+  const uint32_t a = cu.vertices[j], b = cu.vertices[j + 1];
+  const double u = edgeParameter(g.edgeLength(cu.edges[j]), s.h[a], s.h[b], target - before);
+  return g.positions[a] * (1.0 - u) + g.positions[b] * u;
+}
+
+// Would the chord from `corner` to `sample` (on the curve whose first vertex after the corner is
+// `first`) leave the 3D angle to another curve's first edge at the corner below the bound, where
+// the curve's own first edge keeps it at or above?
+bool chordNarrowsCorner(const EdgeGraph& g, const Segmentation& seg, uint32_t corner, uint32_t first, const Vec3& sample) {
+  const double bound = seg.angleBoundDeg * kPi / 180.0;
+  const Vec3 edge = g.positions[first] - g.positions[corner], chord = sample - g.positions[corner];
+  for (uint32_t k = g.vertexEdgeStart[corner]; k < g.vertexEdgeStart[corner + 1]; ++k) {
+    const uint32_t e = g.vertexEdgeIds[k], w = g.otherVertex(e, corner);
+    if (w == first || !seg.isCurveEdge(e)) continue;
+    const Vec3 other = g.positions[w] - g.positions[corner];
+    if (angleBetween(chord, other) < bound && angleBetween(edge, other) >= bound) return true;
+  }
+  return false;
 }
 
 }  // namespace
@@ -80,13 +106,30 @@ CurveMesh sampleCurves(const EdgeGraph& g, const Segmentation& seg, const Sizing
       edgeI[i] = edgeIntegral(g.edgeLength(cu.edges[i]), s.h[cu.vertices[i]], s.h[cu.vertices[i + 1]]);
       total += edgeI[i];
     }
+    // where the samples fall along the curve (integrals of ds/h from its start)
+    std::vector<double> at;
+    for (uint32_t k = 1; k < n[c]; ++k) at.push_back(total * double(k) / double(n[c]));
+    if (cu.edges.size() >= 2) {
+      // a chord from a corner to a sample past the curve's first vertex, where the polyline
+      // kinks, can close a wedge at the corner below the bound that the curve's first edge keeps
+      // open (a cut turning towards a crease just after their junction): that vertex gets a
+      // sample, so the chord is the first edge
+      const double firstEnd = edgeI.front(), lastStart = total - edgeI.back();
+      if ((at.empty() || at.front() > firstEnd) &&
+          chordNarrowsCorner(g, seg, cu.vertices.front(), cu.vertices[1], pointAt(g, cu, s, edgeI, at.empty() ? total : at.front())))
+        at.insert(at.begin(), firstEnd);
+      if ((at.empty() || at.back() < lastStart) &&
+          chordNarrowsCorner(g, seg, cu.vertices.back(), cu.vertices[cu.vertices.size() - 2],
+                             pointAt(g, cu, s, edgeI, at.empty() ? 0.0 : at.back())))
+        at.push_back(lastStart);
+    }
     size_t i = 0;
     double before = 0;  // integral up to the start of edge i
-    for (uint32_t k = 1; k < n[c]; ++k) {
-      double target = total * double(k) / double(n[c]);
+    for (const double target : at) {
       while (i + 1 < cu.edges.size() && before + edgeI[i] < target) before += edgeI[i++];
       uint32_t e = cu.edges[i], a = cu.vertices[i], b = cu.vertices[i + 1];
-      double u = edgeParameter(g.edgeLength(e), s.h[a], s.h[b], target - before);  // from a to b
+      // from a to b; a target at the edge's end (a sample at a polyline vertex) is its end
+      double u = target >= before + edgeI[i] * (1 - 1e-12) ? 1.0 : edgeParameter(g.edgeLength(e), s.h[a], s.h[b], target - before);
       CurveSample smp;
       smp.edge = e;
       smp.t = g.edgeVerts[e][0] == a ? u : 1.0 - u;

@@ -32,7 +32,10 @@ struct CurveMesh {
 //! Sample every curve by arc length so that consecutive samples are about h apart, h the sizing
 //! field interpolated linearly along each edge (segment count n = round(∫ ds / h), samples at
 //! equal steps of ∫ ds / h). At least one segment per curve; more where needed so no two curves
-//! give the same chord and every patch boundary has at least three samples.
+//! give the same chord and every patch boundary has at least three samples; and one at the
+//! curve's first (last) vertex after a corner when the chord from the corner to the next sample
+//! would close a wedge there below seg.angleBoundDeg that the curve's first edge keeps open (3D
+//! angles to the other curves' first edges at the corner).
 CurveMesh sampleCurves(const EdgeGraph& g, const Segmentation& seg, const SizingField& sizing);
 
 }  // namespace conformesh::features

@@ -755,3 +755,32 @@ TEST_CASE("features: moveNarrowCutWedges gives a wedge below the bound between t
   CHECK(s.cutEdgeCount == cuts);
   checkPatchesAreDisks(g, s);
 }
+
+TEST_CASE("features: a curve's chord from a corner that would close a wedge below the bound gets a sample at its kink") {
+  // a square grid, a feature from J = (1/2, 0) on the border diagonally to (7/12, 1/12), then
+  // along y = 1/12 to the border: its first edge leaves the border at 45 degrees, but its chord
+  // from J to its first sample (at about x = 0.77) at 17 degrees
+  const int n = 12;
+  const EdgeGraph g = buildEdgeGraph(testshapes::square(n));
+  std::vector<std::pair<int, int>> path{{6, 0}};
+  for (int x = 7; x <= n; ++x) path.push_back({x, 1});
+  FeatureOptions fo;
+  for (size_t i = 0; i + 1 < path.size(); ++i)
+    fo.featureEdges.push_back({vertexAt(g, path[i].first / double(n), path[i].second / double(n)),
+                               vertexAt(g, path[i + 1].first / double(n), path[i + 1].second / double(n))});
+  const uint32_t kink = vertexAt(g, 7.0 / n, 1.0 / n);
+  SizingOptions so;
+  so.targetEdgeLength = 2.0;  // as few segments per curve as the patches allow
+  for (double bound : {30.0, 10.0}) {
+    fo.angleBoundDeg = bound;
+    const Segmentation s = segment(g, fo);
+    const CurveMesh cm = sampleCurves(g, s, computeSizing(g, s, so));
+    const uint32_t c = s.edgeCurve[g.findEdge(fo.featureEdges[0][0], fo.featureEdges[0][1])];
+    REQUIRE(c != kNone);
+    REQUIRE(s.curves[c].vertices.size() == path.size());
+    bool sampled = false;
+    for (uint32_t id : cm.curveSamples[c]) sampled = sampled || cm.samples[id].vertex == kink;
+    INFO("bound " << bound);
+    CHECK(sampled == (bound > 20));
+  }
+}
