@@ -1,7 +1,7 @@
 // Loading a mesh (a file, a dropped file or a sample): read, analyse, show; flatten a disk-like input.
 import type { MeshInfo } from 'conformesh';
 import type { Mesh3 } from './engine.ts';
-import { clearError, showError } from './errors.ts';
+import { clearError, readable, showError } from './errors.ts';
 import { mountingPlateOff } from './plate.ts';
 import { $, analyzer, engine, errorBox, lastLoad, notice, page, params, progress, setState, updateButtons } from './page.ts';
 import { buildFlat, buildInput, rebuildAll } from './page-views.ts';
@@ -47,6 +47,7 @@ export async function load(bytes: Uint8Array, name: string): Promise<void> {
     };
     page.output = undefined;
     page.flatPatches = undefined;
+    page.flatPreviewFailure = undefined;
     page.libraryPatchOfFace = undefined;
     page.selected = undefined;
     $('#mesh-name').textContent = `${name}: ${mesh.positions.length / 3} vertices, ${mesh.triangles.length / 3} triangles` +
@@ -89,7 +90,11 @@ async function flattenInput(seq: number): Promise<void> {
     buildFlat();
   } catch (e) {
     if (seq !== page.loadSeq) return;
-    showError(errorBox, e, 'flattening the input');
+    // a preview the user did not ask for: said in the flat view, not as an error of the page
+    const r = readable(e);
+    page.flatPreviewFailure =
+      `The input could not be flattened in one piece (${r.code}: ${r.message}). ` +
+      'Run Remesh to see every patch flattened: it cuts the surface into patches first.';
     buildFlat();
   }
 }

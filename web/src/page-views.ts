@@ -203,7 +203,7 @@ export function buildFlat(): void {
     } else if (page.output) {
       showUnavailable('#flat-unavailable', 'This build\u2019s remesh result carries no planar patches to show.');
     } else {
-      showUnavailable('#flat-unavailable', page.input ? 'Run Remesh to see every patch flattened.' : undefined);
+      showUnavailable('#flat-unavailable', page.input ? (page.flatPreviewFailure ?? 'Run Remesh to see every patch flattened.') : undefined);
     }
     legend();
     return;

@@ -43,6 +43,8 @@ export const page = {
   output: undefined as Output | undefined,
   /** The patches flatten() gave a disk-like input before any remesh. */
   flatPatches: undefined as FlatPatch[] | undefined,
+  /** Why flatten() could not map the input in one piece (shown in the flat view, not as an error). */
+  flatPreviewFailure: undefined as string | undefined,
   libraryPatchOfFace: undefined as Uint32Array | undefined,
   selected: undefined as number | undefined,
   running: undefined as AbortController | undefined,
