@@ -1,5 +1,5 @@
 // conformesh — how wide a patch is across from each of its boundary edges: the local feature
-// size of a thin strip (a chamfer, a blade's rim) or of a corner sharper than 60°, where the
+// size of a thin strip (a chamfer, a blade's rim) or of a corner sharper than 30°, where the
 // refinement must place samples as close as the features are to keep its angle bound.
 #pragma once
 
@@ -15,11 +15,11 @@ namespace conformesh::features {
 //! nearest boundary edge of the same patch that lies across from it, or +infinity where there is
 //! none within maxDistance (and for edges inside a patch, and sides without a face).
 //! "Across": the segment joining the midpoint to its closest point on the other edge is within
-//! 60° of the normal of both edges (their tangents make less than 60° with each other's plane
-//! of crossing), so the next edges along a smooth curve and the other curve of a corner wider
-//! than 60° are not counted, while both sides of a strip and of a sharp corner are. Edges that
-//! share a vertex are never across. Distances are 3D, along straight lines: right across a
-//! strip, an overestimate of nothing. O(E log E) over the patches' boundary edges.
+//! 60° of the normal of both edges. The next edges along a smooth curve fail that test, and so
+//! do the edges of another curve meeting e's curve at a corner wider than 30°; both sides of a
+//! strip and of a sharper corner pass it. An edge is never across from itself. Distances are
+//! straight 3D lines: exact across a flat strip, never longer than the way across on the
+//! surface. O(E log E) over the patches' boundary edges.
 std::vector<std::array<double, 2>> patchWidths(const EdgeGraph& g, const Segmentation& seg, double maxDistance);
 
 }  // namespace conformesh::features

@@ -35,7 +35,8 @@ double thinFeatureIntegral(const features::EdgeGraph& g, const features::Segment
     const auto& w = width[e];
     const auto& ev = g.edgeVerts[e];
     const double h = std::min(sizing.h[ev[0]], sizing.h[ev[1]]);
-    // the edge's own size: the narrower side (a thin strip's neighbour is sampled as finely)
+    // the edge's own size: the narrower side (a thin strip's neighbour is sampled as finely),
+    // kept off zero for a width of zero (two boundary edges through one point)
     const double a = std::max(std::min({h, w[0], w[1]}), sizing.minLength * 1e-3);
     if (!(a < h)) continue;
     const double len = g.edgeLength(e);
