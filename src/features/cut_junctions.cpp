@@ -1,6 +1,5 @@
 #include "features/cut_junctions.h"
 #include "core/constants.h"
-#include "core/union_find.h"
 
 #include <algorithm>
 #include <cmath>
@@ -553,36 +552,18 @@ uint32_t moveNarrowCutWedges(const EdgeGraph& g, Segmentation& seg, double minAn
     verts.erase(std::unique(verts.begin(), verts.end()), verts.end());
   }
   const auto isCurve = [&](uint32_t e) { return seg.isCurveEdge(e); };
-  WedgeScratch scratch;
+  WedgeScratch scratch, groups;  // groups: v's wedges while scratch measures after a move
   uint32_t moved = 0;
-  std::vector<uint32_t> star;
   for (uint32_t v : verts) {
     bool cut = false;
     for (uint32_t k = g.vertexEdgeStart[v]; k < g.vertexEdgeStart[v + 1]; ++k)
       cut = cut || seg.edgeKind[g.vertexEdgeIds[k]] == EdgeKind::Cut;
-    if (!cut || smallestWedge(g, v, isCurve, scratch) >= minAngle) continue;
-    // the wedges at v: its faces joined across the edges at v that are no curve
-    star.clear();
-    for (uint32_t k = g.vertexEdgeStart[v]; k < g.vertexEdgeStart[v + 1]; ++k)
-      for (uint32_t f : g.edgeFaces[g.vertexEdgeIds[k]])
-        if (f != kNone) star.push_back(f);
-    std::sort(star.begin(), star.end());
-    star.erase(std::unique(star.begin(), star.end()), star.end());
-    UnionFind wedge(star.size());
-    const auto slot = [&](uint32_t f) { return uint32_t(std::lower_bound(star.begin(), star.end(), f) - star.begin()); };
-    for (uint32_t k = g.vertexEdgeStart[v]; k < g.vertexEdgeStart[v + 1]; ++k) {
-      const uint32_t e = g.vertexEdgeIds[k];
-      if (!seg.isCurveEdge(e) && !g.isBoundary(e)) wedge.unite(slot(g.edgeFaces[e][0]), slot(g.edgeFaces[e][1]));
-    }
-    std::vector<double> angle(star.size(), 0.0);
-    for (uint32_t i = 0; i < star.size(); ++i)
-      for (int c = 0; c < 3; ++c)
-        if (g.faces[star[i]][c] == v) angle[wedge.find(i)] += g.cornerAngle(star[i], c);
-    for (uint32_t root = 0; root < star.size(); ++root) {
-      if (wedge.find(root) != root || angle[root] >= minAngle) continue;
+    if (!cut || !groupWedges(g, v, isCurve, groups)) continue;
+    for (uint32_t root = 0; root < groups.star.size(); ++root) {
+      if (wedgeRoot(groups, root) != root || groups.sum[root] >= minAngle) continue;
       std::vector<uint32_t> faces;
-      for (uint32_t i = 0; i < star.size(); ++i)
-        if (wedge.find(i) == root) faces.push_back(star[i]);
+      for (uint32_t i = 0; i < groups.star.size(); ++i)
+        if (wedgeRoot(groups, i) == root) faces.push_back(groups.star[i]);
       const uint32_t p = seg.facePatch[faces[0]];
       // its cut sides at v with another patch across, longest first
       std::vector<uint32_t> sides;
