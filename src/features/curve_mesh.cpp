@@ -29,14 +29,22 @@ uint32_t segmentCount(const EdgeGraph& g, const Curve& c, const SizingField& s) 
   return uint32_t(std::max<double>(1.0, std::round(total)));
 }
 
-// The point of curve cu at integral `target` of ds/h from its start (edgeI: per edge).
+// Walk curve cu (edgeI: ∫ ds/h per edge) forward from edge i, whose start is at integral
+// `before`, to the edge holding integral `target`; returns the parameter there from
+// cu.vertices[i] (a target at the edge's end is its end: a sample at a polyline vertex).
+double walkTo(const EdgeGraph& g, const Curve& cu, const SizingField& s, const std::vector<double>& edgeI, double target,
+              size_t& i, double& before) {
+  while (i + 1 < cu.edges.size() && before + edgeI[i] < target) before += edgeI[i++];
+  if (target >= before + edgeI[i] * (1 - 1e-12)) return 1.0;
+  return edgeParameter(g.edgeLength(cu.edges[i]), s.h[cu.vertices[i]], s.h[cu.vertices[i + 1]], target - before);
+}
+
+// The point of curve cu at integral `target` of ds/h from its start.
 Vec3 pointAt(const EdgeGraph& g, const Curve& cu, const SizingField& s, const std::vector<double>& edgeI, double target) {
-  size_t j = 0;
+  size_t i = 0;
   double before = 0;
-  while (j + 1 < cu.edges.size() && before + edgeI[j] < target) before += edgeI[j++];
-  const uint32_t a = cu.vertices[j], b = cu.vertices[j + 1];
-  const double u = edgeParameter(g.edgeLength(cu.edges[j]), s.h[a], s.h[b], target - before);
-  return g.positions[a] * (1.0 - u) + g.positions[b] * u;
+  const double u = walkTo(g, cu, s, edgeI, target, i, before);
+  return g.positions[cu.vertices[i]] * (1.0 - u) + g.positions[cu.vertices[i + 1]] * u;
 }
 
 // Would the chord from `corner` to `sample` (on the curve whose first vertex after the corner is
@@ -126,10 +134,8 @@ CurveMesh sampleCurves(const EdgeGraph& g, const Segmentation& seg, const Sizing
     size_t i = 0;
     double before = 0;  // integral up to the start of edge i
     for (const double target : at) {
-      while (i + 1 < cu.edges.size() && before + edgeI[i] < target) before += edgeI[i++];
-      uint32_t e = cu.edges[i], a = cu.vertices[i], b = cu.vertices[i + 1];
-      // from a to b; a target at the edge's end (a sample at a polyline vertex) is its end
-      double u = target >= before + edgeI[i] * (1 - 1e-12) ? 1.0 : edgeParameter(g.edgeLength(e), s.h[a], s.h[b], target - before);
+      const double u = walkTo(g, cu, s, edgeI, target, i, before);  // from a = cu.vertices[i]
+      const uint32_t e = cu.edges[i], a = cu.vertices[i];
       CurveSample smp;
       smp.edge = e;
       smp.t = g.edgeVerts[e][0] == a ? u : 1.0 - u;

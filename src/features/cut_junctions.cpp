@@ -3,6 +3,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstddef>
 #include <map>
 #include <queue>
 #include <string>
@@ -96,13 +97,20 @@ bool keepCutsIfAllDisks(const EdgeGraph& g, Segmentation& seg, const std::vector
   return true;
 }
 
+// Edges sorted longest first (ties by index, so the order is the same on every platform).
+void sortLongestFirst(const EdgeGraph& g, std::vector<uint32_t>& edges) {
+  std::sort(edges.begin(), edges.end(), [&](uint32_t a, uint32_t b) {
+    return g.edgeLength(a) > g.edgeLength(b) || (g.edgeLength(a) == g.edgeLength(b) && a < b);
+  });
+}
+
 // A vertex of `ends` left with one curve edge ends a cut branch that no longer separates
 // anything: the branch goes, edge by edge back to where it meets other curves, each edge handed
 // to `drop` (which unmarks it). False, at once, when a branch ends in a feature or boundary edge
-// (a feature's end would dangle) or more than `budget` edges would go.
+// (a feature's end would dangle) or more than `budget` edges would go (a negative budget: any).
 template <class Drop>
-bool pruneDanglingCuts(const EdgeGraph& g, const Segmentation& seg, const std::vector<uint32_t>& ends, size_t budget, Drop&& drop) {
-  size_t dropped = 0;
+bool pruneDanglingCuts(const EdgeGraph& g, const Segmentation& seg, const std::vector<uint32_t>& ends, std::ptrdiff_t budget, Drop&& drop) {
+  std::ptrdiff_t dropped = 0;
   for (uint32_t x : ends)
     for (;;) {
       uint32_t only = kNone, n = 0;
@@ -422,7 +430,7 @@ uint32_t straightenCutEars(const EdgeGraph& g, Segmentation& seg, const std::vec
           // a rim vertex left with one cut edge ends a branch that no longer separates
           // anything: the branch goes, back to where it meets other curves. A branch that would
           // leave a feature's end dangling keeps the old cut.
-          ok = pruneDanglingCuts(g, seg, rim, kMaxPrune - toggled.size(), toggle);
+          ok = pruneDanglingCuts(g, seg, rim, std::ptrdiff_t(kMaxPrune) - std::ptrdiff_t(toggled.size()), toggle);
           ok = ok && wedgeAround(v, rim) > before + kGain;
           // a move that took an old cut off the rim or pruned a branch regroups faces of more
           // than two patches: it is kept only when every patch it touches stays a disk
@@ -496,9 +504,7 @@ uint32_t absorbCutSlivers(const EdgeGraph& g, Segmentation& seg, double minAngle
     for (uint32_t f : faces)
       for (uint32_t e : g.faceEdges[f])
         if (seg.edgeKind[e] == EdgeKind::Cut) border.push_back(e);
-    std::sort(border.begin(), border.end(), [&](uint32_t a, uint32_t b) {
-      return g.edgeLength(a) > g.edgeLength(b) || (g.edgeLength(a) == g.edgeLength(b) && a < b);
-    });
+    sortLongestFirst(g, border);
     for (uint32_t e0 : border) {
       const uint32_t f0 = g.edgeFaces[e0][0], f1 = g.edgeFaces[e0][1];
       if (f0 == kNone || f1 == kNone || (seg.facePatch[f0] != p && seg.facePatch[f1] != p)) continue;
@@ -517,7 +523,7 @@ uint32_t absorbCutSlivers(const EdgeGraph& g, Segmentation& seg, double minAngle
             ends.push_back(g.edgeVerts[e][1]);
           }
         }
-      const bool ok = pruneDanglingCuts(g, seg, ends, g.edgeCount(), [&](uint32_t e) { seg.edgeKind[e] = EdgeKind::None; });
+      const bool ok = pruneDanglingCuts(g, seg, ends, std::ptrdiff_t(g.edgeCount()), [&](uint32_t e) { seg.edgeKind[e] = EdgeKind::None; });
       if (ok) {
         rebuildCurves(g, seg);
         if (keepCutsIfAllDisks(g, seg, before)) {
@@ -575,9 +581,7 @@ uint32_t moveNarrowCutWedges(const EdgeGraph& g, Segmentation& seg, double minAn
         const bool inB = std::find(faces.begin(), faces.end(), b) != faces.end();
         if (inA != inB && seg.facePatch[inA ? b : a] != p) sides.push_back(e);
       }
-      std::sort(sides.begin(), sides.end(), [&](uint32_t a, uint32_t b) {
-        return g.edgeLength(a) > g.edgeLength(b) || (g.edgeLength(a) == g.edgeLength(b) && a < b);
-      });
+      sortLongestFirst(g, sides);
       const uint32_t movedBefore = moved;
       for (uint32_t e : sides) {
         const std::vector<EdgeKind> before = seg.edgeKind;
@@ -594,22 +598,20 @@ uint32_t moveNarrowCutWedges(const EdgeGraph& g, Segmentation& seg, double minAn
             for (uint32_t w : g.edgeVerts[x]) watch.push_back({w, 0.0});
           }
         // a cut left with no other curve at v (or at e's far end) goes back to where it meets one
-        if (!pruneDanglingCuts(g, seg, {v, g.otherVertex(e, v)}, g.edgeCount(), [&](uint32_t x) { seg.edgeKind[x] = EdgeKind::None; })) {
+        if (!pruneDanglingCuts(g, seg, {v, g.otherVertex(e, v)}, std::ptrdiff_t(g.edgeCount()), [&](uint32_t x) { seg.edgeKind[x] = EdgeKind::None; })) {
           seg.edgeKind = before;
           continue;
         }
         std::sort(watch.begin(), watch.end());
         watch.erase(std::unique(watch.begin(), watch.end(), [](const auto& a, const auto& b) { return a.first == b.first; }), watch.end());
-        {  // the wedges as they were
-          std::vector<EdgeKind> now = seg.edgeKind;
-          seg.edgeKind = before;
-          for (auto& [w, a] : watch) a = smallestWedge(g, w, isCurve, scratch);
-          seg.edgeKind = std::move(now);
-        }
+        const auto wasCurve = [&](uint32_t x) { return before[x] != EdgeKind::None; };
+        for (auto& [w, a] : watch) a = smallestWedge(g, w, wasCurve, scratch);  // as they were
         rebuildCurves(g, seg);
         bool ok = keepCutsIfAllDisks(g, seg, before);
-        for (const auto& [w, a] : watch)
-          ok = ok && smallestWedge(g, w, isCurve, scratch) >= std::min(minAngle, a) && !(w == v && smallestWedge(g, w, isCurve, scratch) <= a);
+        for (const auto& [w, a] : watch) {
+          const double now = smallestWedge(g, w, isCurve, scratch);
+          ok = ok && now >= std::min(minAngle, a) && (w != v || now > a);
+        }
         if (ok) {
           ++moved;
           break;
