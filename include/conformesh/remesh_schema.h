@@ -138,7 +138,7 @@ inline bool parseBoundary(const std::string& s, Boundary& b) {
 // not to be creases (minFeatureLength); seamEdges: input edges kept as curves for being attribute
 // seams; flowIterations: Newton iterations per patch; patchSplitsForScale: geodesic Voronoi splits
 // of patches whose flattening failed or spread its scale past maxScaleRatio; sinkCuts: patches cut
-// in two through the point their scale sank to (features/sink_cuts.h); optimizeMoves, optimizeFlips: accepted by the
+// in two through the point their scale sank to or a spike tip (features/sink_cuts.h); optimizeMoves, optimizeFlips: accepted by the
 // optimization (moves include curve-sample slides); repairMoves: free vertices moved where the
 // certificate left a triangle below the bound (remesh/repair.h); estimatedTriangles: the output size
 // predicted before refinement (remesh/limits.h); topologyPreserved: false only with

@@ -139,9 +139,9 @@ bool applyCuts(const EdgeGraph& g, Segmentation& seg, uint32_t p, const std::vec
   return ok;
 }
 
-}  // namespace
-
-bool cutThroughSink(const EdgeGraph& g, Segmentation& seg, uint32_t p, uint32_t sink, double minWedge) {
+// cutThroughSink and cutThroughSpike: `balanced` asks the second path to leave at least 3/8 of
+// the angle sum away from the first, else it leaves through the most opposite neighbour.
+bool cutThroughVertex(const EdgeGraph& g, Segmentation& seg, uint32_t p, uint32_t sink, double minWedge, bool balanced) {
   if (p >= seg.patches.size() || sink >= g.vertexCount || onCurve(g, seg, sink)) return false;
   double theta = 0;
   const auto ring = ringAngles(g, sink, theta);
@@ -153,16 +153,31 @@ bool cutThroughSink(const EdgeGraph& g, Segmentation& seg, uint32_t p, uint32_t 
   double a1 = 0;
   for (const auto& [w, a] : ring)
     if (w == first[1]) a1 = a;
-  // the second path leaves the sink roughly opposite the first
+  // the second path leaves the sink roughly opposite the first, or through the most opposite
+  // neighbour that leaves each side minWedge
   std::vector<uint32_t> opposite;
+  double mostAround = 0;
+  uint32_t most = kNone;
   for (const auto& [w, a] : ring) {
     const double d = std::abs(a - a1), around = std::min(d, theta - d);
-    if (around >= 0.375 * theta && around >= minWedge) opposite.push_back(w);
+    if (balanced && around >= 0.375 * theta && around >= minWedge) opposite.push_back(w);
+    if (around >= minWedge && around > mostAround) mostAround = around, most = w;
   }
+  if (!balanced && most != kNone) opposite.push_back(most);
   const std::vector<uint32_t> avoid(first.begin() + 1, first.end());
   const std::vector<uint32_t> second = pathToBorder(g, seg, p, sink, opposite, avoid);
   if (second.size() < 2) return false;
   return applyCuts(g, seg, p, {&first, &second});
+}
+
+}  // namespace
+
+bool cutThroughSink(const EdgeGraph& g, Segmentation& seg, uint32_t p, uint32_t sink, double minWedge) {
+  return cutThroughVertex(g, seg, p, sink, minWedge, true);
+}
+
+bool cutThroughSpike(const EdgeGraph& g, Segmentation& seg, uint32_t p, uint32_t tip, double minWedge) {
+  return cutThroughVertex(g, seg, p, tip, minWedge, false);
 }
 
 bool cutThroughWideCorner(const EdgeGraph& g, Segmentation& seg, uint32_t p, uint32_t v, double minWedge) {

@@ -30,6 +30,13 @@ namespace conformesh::features {
 //! up as two or more disks, or the segmentation with no more patches than before. O(patch) plus the rebuilds of the curves.
 bool cutThroughSink(const EdgeGraph& g, Segmentation& seg, uint32_t p, uint32_t sink, double minWedge);
 
+//! cutThroughSink for the tip of a spike (an interior vertex whose angle sum is far below 2π: a
+//! horn, a claw): the second path leaves the tip through the neighbour most opposite the first
+//! that leaves each side `minWedge` (a spike tip's ring has few faces, often none 3/8 of the
+//! way round). The tip is then on the border of both halves, where the free boundary keeps the
+//! scale of the surface: no flat map squeezes the spike into a point inside a patch.
+bool cutThroughSpike(const EdgeGraph& g, Segmentation& seg, uint32_t p, uint32_t tip, double minWedge);
+
 //! Cut patch p in two along the shortest path of input edges inside it from `corner` (a vertex
 //! on its border) to its border again, leaving the corner near the middle of p's wedge there
 //! (each side at least 3/8 of the wedge and `minWedge` radians). For a wedge too wide to lay

@@ -33,6 +33,11 @@ constexpr double kSinkScaleRatio = 4.0;
 // fixed keeps every triangle valid). man: a 299° vertex failed from 2,026 faces down to 8.
 constexpr double kConeGap = 0.25 * kPi;
 
+// An interior vertex is a spike tip when its angle sum is below this many times the angle bound:
+// a fan of that many triangles around a flat point has angles of 2π over that many there, the
+// bound at the tip once lifted (by Θ/2π) when Θ is this many bounds.
+constexpr double kSpikeTipFan = 6.0;
+
 // The 3D angle sum at each vertex of a patch over the patch's faces.
 std::vector<double> cornerWedgeAngles(const F::PatchMesh& pm) {
   std::vector<double> a(pm.vertexInput.size(), 0.0);
@@ -108,6 +113,7 @@ uint32_t scaleSink(const F::PatchMesh& pm, const std::vector<double>& u) {
 struct FarFromFlat {
   uint32_t widestCorner = kNone;
   uint32_t sharpestCone = kNone;
+  double coneAngle = 2 * kPi;  // sharpestCone's angle sum
 };
 
 FarFromFlat farFromFlat(const F::PatchMesh& pm) {
@@ -123,7 +129,7 @@ FarFromFlat farFromFlat(const F::PatchMesh& pm) {
       if (angle[v] > widest) widest = angle[v], far.widestCorner = pm.vertexInput[v];
     }
   for (uint32_t v = 0; v < angle.size(); ++v)
-    if (!border[v] && angle[v] < sharpest) sharpest = angle[v], far.sharpestCone = pm.vertexInput[v];
+    if (!border[v] && angle[v] < sharpest) sharpest = far.coneAngle = angle[v], far.sharpestCone = pm.vertexInput[v];
   return far;
 }
 
@@ -293,6 +299,8 @@ Patches flattenPatches(Surface& surf, const RemeshOptions& opt, const Progress& 
   // patches the segmentation may make (a split that undoes another would otherwise cycle)
   const uint32_t maxPatches = F::FeatureOptions{}.maxPatches;
   const double minWedge = 2 * opt.minAngle * kPi / 180;  // each side of a cut through a vertex
+  // an interior vertex whose angle sum is below this is a spike tip (kSpikeTipFan)
+  const double spikeAngle = kSpikeTipFan * opt.minAngle * kPi / 180;
   std::set<uint64_t> lateral;  // segmentations left by splits that made no more patches
   for (int round = 0;; ++round) {
     if (round > 64 + 2 * int(maxPatches) || surf.seg.patches.size() > maxPatches)
@@ -376,6 +384,16 @@ Patches flattenPatches(Surface& surf, const RemeshOptions& opt, const Progress& 
         if (f.next > 1)
           rep.warnings.push_back(std::string("patch flattened with the ") + conditionName(order[f.next - 1]) +
                                  " boundary condition after: " + f.lastError + " [patch of " + std::to_string(faces.size()) + " faces]");
+        // a spike tip inside the patch: the flat map opens its angle sum Θ to 2π, so the angles
+        // of the triangles around it shrink by Θ/2π when lifted, and the output need not have a
+        // vertex at the tip; cut through it, and each half lays out its side of the tip as it is
+        // (each side keeps the bound: a wedge below twice the bound takes one triangle)
+        if (const FarFromFlat far = farFromFlat(f.w->pm);
+            far.coneAngle < spikeAngle && F::cutThroughSpike(surf.g, surf.seg, p, far.sharpestCone, 0.5 * minWedge)) {
+          ++rep.sinkCuts;
+          split = true;
+          continue;
+        }
         if (f.scaleRatio > kSinkScaleRatio &&
             F::cutThroughSink(surf.g, surf.seg, p, scaleSink(f.w->pm, f.w->flat.u), minWedge)) {
           ++rep.sinkCuts;

@@ -75,6 +75,42 @@ TEST_CASE("sink cuts: a finger is remeshed as two patches with the count its siz
   }
 }
 
+TEST_CASE("sink cuts: a spike tip is cut through, so no patch's flat map squeezes it into an inner point") {
+  // Flattened inside a patch, the tip (a cone of angle sum Θ) opens to 2π: the triangles around
+  // it shrink by Θ/2π when lifted, and the output cuts the tip off. Cut through, it lies on the
+  // border of both halves, where the free boundary keeps the surface's scale. A low, wide spike
+  // (its scale spreads too little for a sink cut) and a tall one.
+  for (const auto& size : {std::pair{0.25, 0.12}, std::pair{0.85, 0.3}}) {
+    const double height = size.first, width = size.second;  // not a structured binding: CAPTURE is a lambda
+    CAPTURE(height);
+    const MeshBuffers spike = testshapes::spike(height, width);
+    const EdgeGraph g = buildEdgeGraph(spike);
+    double theta = 0;  // the angle sum at the tip, vertex 0
+    std::vector<uint32_t> tipFaces;
+    for (uint32_t f = 0; f < g.faceCount; ++f)
+      for (int c = 0; c < 3; ++c)
+        if (g.faces[f][c] == 0) theta += g.cornerAngle(f, c), tipFaces.push_back(f);
+    REQUIRE(segment(g, FeatureOptions{}).patches.size() == 1);  // no crease reaches the tip
+    REQUIRE(theta < kPi);
+    RemeshOptions o;
+    o.threads = 1;
+    o.targetEdgeLengthRel = 0.02;
+    o.patches = true;
+    const RemeshResult r = remesh(spike, o);
+    REQUIRE(r.status.ok());
+    CHECK(r.report.minAngle >= o.minAngle);
+    CHECK(r.report.topologyPreserved);
+    std::vector<size_t> patchesAtTip;  // the patches with a face at the tip
+    for (size_t p = 0; p < r.patches.size(); ++p)
+      for (uint32_t f : r.patches[p].layoutInputFace)
+        if (std::find(tipFaces.begin(), tipFaces.end(), f) != tipFaces.end()) {
+          patchesAtTip.push_back(p);
+          break;
+        }
+    CHECK(patchesAtTip.size() >= 2);
+  }
+}
+
 TEST_CASE("sink cuts: cutThroughWideCorner cuts a patch in two disks from a border vertex, near the middle of its wedge") {
   const EdgeGraph g = buildEdgeGraph(testshapes::square(8));
   Segmentation s = segment(g, FeatureOptions{});

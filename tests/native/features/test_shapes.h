@@ -128,23 +128,41 @@ inline MeshBuffers square(int n) {
   return b.m;
 }
 
-//! A unit disk (30 rings, 64 sectors, centre vertex 0) raised into a bump z = height·exp(-r²/width²):
-//! a finger whose tip, vertex 0, gathers the curvature (the scale of a flattening sinks there).
-inline MeshBuffers bump(double height, double width) {
+//! A unit disk (30 rings, 64 sectors, centre vertex 0) raised to z = height(r).
+template <typename Height>
+MeshBuffers raisedDisk(Height height) {
   Builder b;
   const double pi = 3.14159265358979323846;
   const int rings = 30, sectors = 64;
   auto at = [&](int k, int i) {
     const double r = double(k) / rings, a = 2 * pi * (i % sectors) / sectors;
-    return b.vertex(r * std::cos(a), r * std::sin(a), height * std::exp(-r * r / (width * width)));
+    return b.vertex(r * std::cos(a), r * std::sin(a), height(r));
   };
-  for (int i = 0; i < sectors; ++i) b.tri(at(0, 0), at(1, i), at(1, i + 1));
+  const uint32_t centre = at(0, 0);  // first, so vertex 0 (arguments are evaluated in any order)
+  for (int i = 0; i < sectors; ++i) {
+    const uint32_t a = at(1, i), c = at(1, i + 1);
+    b.tri(centre, a, c);
+  }
   for (int k = 1; k < rings; ++k)
     for (int i = 0; i < sectors; ++i) {
-      b.tri(at(k, i), at(k + 1, i), at(k + 1, i + 1));
-      b.tri(at(k, i), at(k + 1, i + 1), at(k, i + 1));
+      const uint32_t p00 = at(k, i), p10 = at(k + 1, i), p11 = at(k + 1, i + 1), p01 = at(k, i + 1);
+      b.tri(p00, p10, p11);
+      b.tri(p00, p11, p01);
     }
   return b.m;
+}
+
+//! The unit disk raised into a bump z = height·exp(-r²/width²): a finger whose tip, vertex 0,
+//! gathers the curvature (the scale of a flattening sinks there).
+inline MeshBuffers bump(double height, double width) {
+  return raisedDisk([&](double r) { return height * std::exp(-r * r / (width * width)); });
+}
+
+//! The unit disk raised into a spike z = height·exp(-r/width): a horn whose tip, vertex 0, is a
+//! cone of angle sum about 2π / sqrt(1 + (height/width)²); no edge bends by 40°, so no crease
+//! reaches the tip.
+inline MeshBuffers spike(double height, double width) {
+  return raisedDisk([&](double r) { return height * std::exp(-r / width); });
 }
 
 }  // namespace conformesh::testshapes
