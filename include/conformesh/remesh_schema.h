@@ -59,8 +59,8 @@ inline bool parseBoundary(const std::string& s, Boundary& b) {
   /* error-driven: the sizes grow as large as the chord error, the curvature and the angle bound allow; the report's    \
      measured Hausdorff distance is at most this, else IterationLimit (remesh/max_error.h) */                           \
   X(double, maxError, -1.0, -1e308, 1e308, "--max-error", "D",                                                          \
-    "error-driven remeshing: the largest Hausdorff distance to the input (input units); every sharp edge is a "         \
-    "crease and the sizes grow as far as it allows; < 0: --max-error-rel; 0: off")                                      \
+    "error-driven remeshing: the largest Hausdorff distance to the input (input units); the sizes grow as far "        \
+    "as it allows; < 0: --max-error-rel; 0: off")                                                                       \
   X(double, maxErrorRel, 0.0, 0, 1e308, "--max-error-rel", "R",                                                         \
     "--max-error as a fraction of the bounding-box diagonal; 0: off")                                                   \
   X(double, gradation, 1.5, 1, 1e308, "--gradation", "G", "bound on the ratio of neighbouring edge lengths, > 1")       \
@@ -74,8 +74,7 @@ inline bool parseBoundary(const std::string& s, Boundary& b) {
     "a feature curve turning by more than this (degrees) at a vertex gets a corner there")                              \
   /* creases only in chains that stand out of their neighbourhood (features/creases.h); user feature edges stay */      \
   X(double, minFeatureLength, -1.0, -1e308, 1e308, "--min-feature-length", "L",                                         \
-    "shortest chain of sharp edges kept as a crease (input units); < 0: twice the edge length, 0 when "                 \
-    "error-driven; 0: all")                                                                                             \
+    "shortest chain of sharp edges kept as a crease (input units); < 0: twice the edge length; 0: all")               \
   /* a strip far narrower than the output edges (a CAD chamfer) is otherwise meshed below the sizing's floor            \
      (docs/decisions/0007-narrow-strips.md) */                                                                          \
   X(double, minPatchWidth, 0.0, -1e308, 1e308, "--min-patch-width", "W",                                                \

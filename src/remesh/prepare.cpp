@@ -71,9 +71,9 @@ Surface prepareSurface(ValidatedMesh vm, const MeshBuffers& input, const RemeshO
   // over the limits already with the target alone: TooLarge before any heavy work
   if (target > 0) checkOutputEstimate(estimateFromTarget(area, target, in.triangleCount()), opt);
   fo.junctionScale = target;
-  // error-driven, every sharp edge is kept unless asked otherwise: the output spanning a dropped
-  // crease deviates from it by the crease's own height, whatever the sizes
-  fo.minFeatureLength = opt.minFeatureLength >= 0 ? opt.minFeatureLength : errorDriven(opt) ? 0.0 : kMinFeatureFactor * target;
+  // error-driven too: the output spanning a dropped crease is held to the chord tolerance by the
+  // sizing's bend bound (features/sizing.h), and noise kept as creases makes patches and corners
+  fo.minFeatureLength = opt.minFeatureLength >= 0 ? opt.minFeatureLength : kMinFeatureFactor * target;
   // strips narrower than half the smallest edge the sizing allows (its minLength) are merged
   // into a neighbour (features/segmentation.h)
   fo.minPatchWidth = opt.minPatchWidth >= 0 ? opt.minPatchWidth : 0.5 * (opt.minEdgeLength > 0 ? opt.minEdgeLength : 0.1 * target);

@@ -18,22 +18,9 @@ using namespace conformesh;
 using namespace conformesh::features;
 
 namespace {
-// A flat grid whose interior vertices are lifted by a deterministic pseudo-random height: a
-// coarse tessellation of a rough sheet, with many edges above 40° and no crease.
-MeshBuffers roughSheet(int n, double amplitude) {
-  MeshBuffers m = testshapes::square(n);
-  uint32_t state = 12345u;
-  for (size_t v = 0; v < m.positions.size() / 3; ++v) {
-    state = state * 1664525u + 1013904223u;
-    const double x = m.positions[3 * v], y = m.positions[3 * v + 1];
-    if (x > 0 && x < 1 && y > 0 && y < 1) m.positions[3 * v + 2] = amplitude * (double(state >> 8) / double(1u << 24) - 0.5);
-  }
-  return m;
-}
-
 // A sheet folded by `foldDeg` along x = 0.5 (n × n grid), lifted like roughSheet by `amplitude`.
 MeshBuffers foldedSheet(int n, double foldDeg, double amplitude) {
-  MeshBuffers m = roughSheet(n, amplitude);
+  MeshBuffers m = testshapes::roughSheet(n, amplitude);
   const double t = std::tan(foldDeg * 3.14159265358979323846 / 180.0);
   for (size_t v = 0; v < m.positions.size() / 3; ++v) {
     const double x = m.positions[3 * v];
@@ -51,7 +38,7 @@ uint32_t creasesOnFold(const EdgeGraph& g, const Creases& c) {
 }  // namespace
 
 TEST_CASE("creases: the facets of a rough coarse sheet are not creases; minLength 0 keeps every sharp edge") {
-  EdgeGraph g = buildEdgeGraph(roughSheet(16, 0.12));
+  EdgeGraph g = buildEdgeGraph(testshapes::roughSheet(16, 0.12));
   CreaseOptions all;
   const Creases every = detectCreases(g, all);
   REQUIRE(every.candidates > 40);  // the sheet is rough at 40°

@@ -128,6 +128,19 @@ inline MeshBuffers square(int n) {
   return b.m;
 }
 
+//! A flat n × n grid whose interior vertices are lifted by a deterministic pseudo-random height:
+//! a coarse tessellation of a rough sheet, with many edges above 40° and no crease.
+inline MeshBuffers roughSheet(int n, double amplitude) {
+  MeshBuffers m = square(n);
+  uint32_t state = 12345u;
+  for (size_t v = 0; v < m.positions.size() / 3; ++v) {
+    state = state * 1664525u + 1013904223u;
+    const double x = m.positions[3 * v], y = m.positions[3 * v + 1];
+    if (x > 0 && x < 1 && y > 0 && y < 1) m.positions[3 * v + 2] = amplitude * (double(state >> 8) / double(1u << 24) - 0.5);
+  }
+  return m;
+}
+
 //! A unit disk (30 rings, 64 sectors, centre vertex 0) raised to z = height(r).
 template <typename Height>
 MeshBuffers raisedDisk(Height height) {
