@@ -212,6 +212,28 @@ void balanceMobius(const conformal::IntrinsicTriangulation& T, const MeshBuffers
 }
 }  // namespace
 
+// What the pull-back is built from: the input's positions, its intrinsic triangulation, that
+// triangulation made Delaunay (angular and horocyclic positions), the final one, its layout and u.
+struct DeferredPullback {
+  std::vector<double> positions;
+  conformal::IntrinsicTriangulation Tin, TdAngular, Td, T;
+  std::vector<double> xy, u;
+};
+
+void finishPullback(FlatPatch& flat) {
+  if (!flat.deferred) return;
+  using namespace conformal;
+  const auto t = Clock::now();
+  DeferredPullback& d = *flat.deferred;
+  OverlayMap stage2 = buildOverlayMap(d.Tin, d.TdAngular, OverlayGeometry::Euclidean);
+  OverlayMap stage1 = buildOverlayMap(d.Td, d.T, OverlayGeometry::Hyperbolic);
+  flat.pullback = Pullback(std::move(d.positions), d.Tin.vert, std::move(d.xy), d.T.vert, std::move(d.u), std::move(stage1), std::move(stage2));
+  flat.deferred.reset();
+  flat.report.overlayCrossings = flat.pullback.crossings();
+  flat.report.secondsOverlay = since(t);
+  flat.report.seconds += flat.report.secondsOverlay;
+}
+
 namespace {
 FlatPatch flattenCompact(const MeshBuffers& patch, const FlattenOptions& options, const ProgressFn& progress) {
   using namespace conformal;
@@ -326,14 +348,13 @@ FlatPatch flattenCompact(const MeshBuffers& patch, const FlattenOptions& options
   if (progress && !progress(Stage::Flatten, 0.9)) fail(Code::Cancelled, Stage::Flatten, "flatten: cancelled");
 
   if (options.pullback) {
-    const auto t2 = Clock::now();
-    OverlayMap stage2 = buildOverlayMap(Tin, TdAngular, OverlayGeometry::Euclidean);
-    OverlayMap stage1 = buildOverlayMap(Td, T, OverlayGeometry::Hyperbolic);
-    out.pullback = Pullback(patch.positions, Tin.vert, L.xy, T.vert, u, std::move(stage1), std::move(stage2));
-    R.overlayCrossings = out.pullback.crossings();
-    R.secondsOverlay = since(t2);
+    out.deferred = std::make_shared<DeferredPullback>(
+        DeferredPullback{patch.positions, std::move(Tin), std::move(TdAngular), std::move(Td), T, L.xy, u});
+    R.seconds = since(t0);
+    if (!options.deferPullback) finishPullback(out);
+  } else {
+    R.seconds = since(t0);
   }
-  R.seconds = since(t0);
   if (progress && !progress(Stage::Flatten, 1.0)) fail(Code::Cancelled, Stage::Flatten, "flatten: cancelled");
   return out;
 }

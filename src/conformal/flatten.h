@@ -4,6 +4,7 @@
 #pragma once
 
 #include <cstdint>
+#include <memory>
 #include <utility>
 #include <vector>
 
@@ -28,6 +29,9 @@ struct FlattenOptions {
   double tolerance = 1e-9;   //!< max |K - Kbar| in radians
   int maxIterations = 100;   //!< Newton cap (Code::IterationLimit)
   bool pullback = true;      //!< build the overlay and the pull-back
+  //! With pullback: keep what the pull-back is built from and build it in finishPullback, so a
+  //! flattening that is looked at and dropped (a patch cut again) does not pay for the overlay.
+  bool deferPullback = false;
   //! Throw Code::NumericalFailure when the layout has inverted triangles or crossing boundary
   //! loops (default); false returns the result with the counts in the report.
   bool requireValidLayout = true;
@@ -74,7 +78,15 @@ struct FlatPatch {
   std::vector<std::vector<uint32_t>> boundaryLoops;  //!< vertex loops, outer first, domain on the left
   Pullback pullback;       //!< planar point -> input face, barycentric coordinates, 3D point
   FlattenReport report;
+  //! FlattenOptions::deferPullback: the triangulations the pull-back is built from, until
+  //! finishPullback (then empty).
+  std::shared_ptr<struct DeferredPullback> deferred;
 };
+
+//! Build the pull-back of a flattening made with FlattenOptions::deferPullback (and its report's
+//! overlayCrossings, secondsOverlay); nothing when there is none to build. The same pull-back as
+//! without deferring.
+void finishPullback(FlatPatch& flat);
 
 //! Flatten a patch conformally. Pre: a manifold, consistently oriented, connected triangle
 //! mesh with genus 0 and at least one boundary loop, no zero-area faces. Vertices are never

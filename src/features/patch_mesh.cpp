@@ -2,22 +2,44 @@
 #include "features/patch_mesh.h"
 #include "core/union_find.h"
 
-#include <numeric>
-#include <unordered_map>
 
 namespace conformesh::features {
+
+namespace {
+
+// Per input face (or vertex) of the graph, a slot that is kNone except while a call uses it:
+// each call sets the entries it needs and puts them back, so it costs O(patch), not O(mesh),
+// however many patches are extracted (one per thread: extractions run on the patch threads).
+struct Slots {
+  std::vector<uint32_t> at;
+  std::vector<uint32_t> used;
+  void reserve(size_t n) {
+    if (at.size() < n) at.resize(n, kNone);
+  }
+  void set(uint32_t i, uint32_t value) {
+    if (at[i] == kNone) used.push_back(i);
+    at[i] = value;
+  }
+  void clear() {
+    for (uint32_t i : used) at[i] = kNone;
+    used.clear();
+  }
+};
+
+}  // namespace
 
 PatchMesh extractPatch(const EdgeGraph& g, const std::vector<uint8_t>& isCurve,
                        const std::vector<uint32_t>& faces, bool traceLoops) {
   PatchMesh pm;
   const uint32_t nF = uint32_t(faces.size());
-  std::unordered_map<uint32_t, uint32_t> local;
-  local.reserve(faces.size() * 2);
-  for (uint32_t i = 0; i < nF; ++i) local.emplace(faces[i], i);
-  auto localOf = [&](uint32_t f) {
-    auto it = local.find(f);
-    return it == local.end() ? kNone : it->second;
-  };
+  thread_local Slots local;  // input face -> its index in `faces`
+  local.reserve(g.faceCount);
+  struct Clear {
+    Slots& s;
+    ~Clear() { s.clear(); }
+  } clearLocal{local};  // also when a check below throws
+  for (uint32_t i = 0; i < nF; ++i) local.set(faces[i], i);
+  auto localOf = [&](uint32_t f) { return local.at[f]; };
   // corners (i, c) -> 3i + c; unite corners of the same input vertex across non-curve edges
   UnionFind uf(3 * size_t(nF));
   uint32_t boundaryHalfedges = 0;
@@ -57,10 +79,14 @@ PatchMesh extractPatch(const EdgeGraph& g, const std::vector<uint8_t>& isCurve,
       pm.mesh.triangles[3 * i + c] = rootVertex[r];
     }
   }
-  {
-    std::vector<uint32_t> sorted = pm.vertexInput;
-    std::sort(sorted.begin(), sorted.end());
-    pm.pinched = std::adjacent_find(sorted.begin(), sorted.end()) != sorted.end();
+  {  // pinched: an input vertex with two or more patch vertices
+    thread_local Slots seen;
+    seen.reserve(g.vertexCount);
+    for (uint32_t v : pm.vertexInput) {
+      if (seen.at[v] != kNone) pm.pinched = true;
+      seen.set(v, 1);
+    }
+    seen.clear();
   }
   const long V = long(pm.vertexInput.size()), F = long(nF);
   const long E = (3 * F + long(boundaryHalfedges)) / 2;

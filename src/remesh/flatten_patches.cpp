@@ -164,6 +164,7 @@ void tryConditions(const F::Segmentation& seg, const std::vector<BoundaryConditi
     const BoundaryCondition bc = order[f.next++];
     FlattenOptions fo;
     fo.boundary = bc;
+    fo.deferPullback = true;  // built once the patch is kept (flattenPatches' end)
     if (bc == BoundaryCondition::Corners) {
       f.corners = boundaryCorners(seg, f.w->pm);
       f.cornersTried = true;
@@ -412,6 +413,8 @@ Patches flattenPatches(Surface& surf, const RemeshOptions& opt, const Progress& 
     if (split) continue;
     Patches work;
     for (const auto& faces : surf.seg.patches) work.push_back(std::move(cache.at(keyOf(faces))));
+    // the pull-backs of the flattenings kept (most of those made were dropped for a cut)
+    parallelFor(work.size(), unsigned(opt.threads), [&](size_t i) { finishPullback(work[i]->flat); });
     return work;
   }
 }
