@@ -349,7 +349,7 @@ FlatPatch flattenCompact(const MeshBuffers& patch, const FlattenOptions& options
 
   if (options.pullback) {
     out.deferred = std::make_shared<DeferredPullback>(
-        DeferredPullback{patch.positions, std::move(Tin), std::move(TdAngular), std::move(Td), T, L.xy, u});
+        DeferredPullback{patch.positions, std::move(Tin), std::move(TdAngular), std::move(Td), std::move(T), std::move(L.xy), std::move(u)});
     R.seconds = since(t0);
     if (!options.deferPullback) finishPullback(out);
   } else {

@@ -2,7 +2,6 @@
 #include "features/patch_mesh.h"
 #include "core/union_find.h"
 
-
 namespace conformesh::features {
 
 namespace {
