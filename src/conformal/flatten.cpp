@@ -347,13 +347,11 @@ FlatPatch flattenCompact(const MeshBuffers& patch, const FlattenOptions& options
   distortion(patch, out.uv, R);
   if (progress && !progress(Stage::Flatten, 0.9)) fail(Code::Cancelled, Stage::Flatten, "flatten: cancelled");
 
+  R.seconds = since(t0);  // finishPullback adds the overlay's time
   if (options.pullback) {
     out.deferred = std::make_shared<DeferredPullback>(
         DeferredPullback{patch.positions, std::move(Tin), std::move(TdAngular), std::move(Td), std::move(T), std::move(L.xy), std::move(u)});
-    R.seconds = since(t0);
     if (!options.deferPullback) finishPullback(out);
-  } else {
-    R.seconds = since(t0);
   }
   if (progress && !progress(Stage::Flatten, 1.0)) fail(Code::Cancelled, Stage::Flatten, "flatten: cancelled");
   return out;

@@ -4,6 +4,7 @@
 #include <cmath>
 #include <string>
 
+#include "mesh/io_detail.h"
 #include "quality/metrics.h"
 
 namespace conformesh {
@@ -27,6 +28,15 @@ constexpr double kCloseEnoughFraction = 0.6;
 // (a flat surface: about 0) would otherwise ask for an unbounded tolerance, attempt after attempt.
 constexpr double kMaxToleranceStep = 8.0;
 
+// A length in a message: the digits that read back to it, in any locale (std::to_string gives
+// six decimals, 0.000000 for a tolerance of 1e-7).
+std::string number(double v) {
+  if (!std::isfinite(v)) return std::to_string(v);
+  std::string s;
+  io_detail::appendDouble(s, v);
+  return s;
+}
+
 // the diagonal the report's hausdorffRel is relative to
 double inputDiagonal(const MeshBuffers& m) { return quality::boundingBox(m).diagonal(); }
 
@@ -43,7 +53,7 @@ RemeshResult remeshWithinError(const MeshBuffers& input, const RemeshOptions& op
   const double bound = maxErrorBound(input, options), diagonal = inputDiagonal(input);
   RemeshResult best;
   // the tolerance factors known to be within the bound (lo, with its result in best) and above it
-  double lo = 0, hi = INFINITY, factor = kFirstToleranceFactor, lastDistance = 0;
+  double lo = 0, hi = INFINITY, factor = kFirstToleranceFactor;
   std::vector<std::string> notes;
   std::vector<std::pair<double, double>> attempts;  // chord tolerance, measured distance
   for (int a = 0; a < kMaxAttempts; ++a) {
@@ -53,10 +63,9 @@ RemeshResult remeshWithinError(const MeshBuffers& input, const RemeshOptions& op
     RemeshResult r = attempt(o);
     if (!r.status.ok()) return r;
     const double distance = r.report.hausdorffRel * diagonal;
-    lastDistance = distance;
     attempts.push_back({o.chordTolerance, distance});
-    notes.push_back("max error: attempt " + std::to_string(a + 1) + " (chord tolerance " + std::to_string(o.chordTolerance) +
-                    "): Hausdorff distance " + std::to_string(distance) + ", bound " + std::to_string(bound) + ", " +
+    notes.push_back("max error: attempt " + std::to_string(a + 1) + " (chord tolerance " + number(o.chordTolerance) +
+                    "): Hausdorff distance " + number(distance) + ", bound " + number(bound) + ", " +
                     std::to_string(r.report.triangles) + " triangles");
     if (distance <= kAcceptFraction * bound) {
       if (lo == 0 || r.report.triangles < best.report.triangles) best = std::move(r);
@@ -78,10 +87,10 @@ RemeshResult remeshWithinError(const MeshBuffers& input, const RemeshOptions& op
   if (lo == 0) {
     std::string tried;  // each attempt's tolerance and distance, for the caller to judge the bound by
     for (const auto& [tolerance, distance] : attempts)
-      tried += (tried.empty() ? "" : "; ") + std::string("tolerance ") + std::to_string(tolerance) + ": " + std::to_string(distance);
+      tried += std::string(tried.empty() ? "" : "; ") + "tolerance " + number(tolerance) + ": " + number(distance);
     RemeshResult r;
     r.status = Status{Code::IterationLimit, Stage::Report,
-                      "the Hausdorff distance " + std::to_string(lastDistance) + " is above " + std::to_string(int(100 * kAcceptFraction)) + " % of maxError " + std::to_string(bound) +
+                      "the Hausdorff distance " + number(attempts.back().second) + " is above " + std::to_string(int(100 * kAcceptFraction)) + " % of maxError " + number(bound) +
                           " after " + std::to_string(kMaxAttempts) + " attempts with tighter chord tolerances (" + tried + ")"};
     return r;
   }
