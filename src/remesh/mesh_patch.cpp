@@ -216,13 +216,15 @@ bool liftPoint(const PatchWork& w, double x, double y, PullbackPoint& q, int hin
 
 // RefineOptions::apexOf and chainOf for a patch's PSLG (its boundary points first, then
 // `points` in all): a boundary point on a curve that ends at an input corner below the bound
-// (Meshing::smallCorner) has that corner's boundary point as its apex and the curve as its chain;
+// (Meshing::smallCorner) whose wedge in this patch is below it (boundDeg) in 3D or in the plane
+// has that corner's boundary point as its apex and the curve as its chain;
 // on a curve between two such corners, with `nearest` the corner nearer in the plane, else the one
 // at the curve's first end (which leaves the other wedge to the refinement). The triangles across such a wedge are then left as it forces them, as the 3D certificate
 // leaves them (certificate.h): refining them only splits the sides closer to the corner, and the
 // patches across take up each split, round after round.
 void cornerChains(const Surface& surf, const Meshing& m, const PatchWork& w, const std::vector<BoundaryPoint>& bp,
-                  size_t points, bool nearest, std::vector<uint32_t>& apexOf, std::vector<uint32_t>& chainOf) {
+                  size_t points, bool nearest, double boundDeg, std::vector<uint32_t>& apexOf,
+                  std::vector<uint32_t>& chainOf) {
   apexOf.clear();
   chainOf.clear();
   const F::CurveMesh& cm = m.samples.cm;
@@ -230,15 +232,39 @@ void cornerChains(const Surface& surf, const Meshing& m, const PatchWork& w, con
     const uint32_t v = cm.samples[sample].vertex;
     return v != kNone && v < m.smallCorner.size() && m.smallCorner[v];
   };
+  const auto& loop = w.pm.boundaryLoops[0];
+  // The patch's own wedge at a boundary point, in 3D (the angle sum of its faces at that sub
+  // vertex) and in the plane (the polygon's inner angle there). A small corner can have wider
+  // wedges beside its small one (two curves at 31° where another pair meets at 22°): where such a
+  // wedge is at least the bound on both sides of the map, its triangles are held to the bound as
+  // at any other corner, not left as forced.
+  const auto smallWedge = [&](uint32_t i) {
+    const auto& h = loop[bp[i].loopPos];
+    const uint32_t sub = w.pm.mesh.triangles[3 * h.face + h.corner];
+    double sum = 0;
+    for (uint32_t f = 0; f < w.pm.faceInput.size(); ++f)
+      for (int c = 0; c < 3; ++c)
+        if (w.pm.mesh.triangles[3 * f + c] == sub) sum += surf.g.cornerAngle(w.pm.faceInput[f], c);
+    if (sum * 180.0 / kPi < boundDeg) return true;
+    const size_t n = bp.size();
+    const BoundaryPoint &a = bp[(i + n - 1) % n], &b = bp[i], &c = bp[(i + 1) % n];
+    double area2 = 0;  // twice the polygon's signed area: the inner side of the boundary
+    for (size_t k = 0; k < n; ++k) area2 += bp[k].x * bp[(k + 1) % n].y - bp[(k + 1) % n].x * bp[k].y;
+    const double ux = c.x - b.x, uy = c.y - b.y, vx = a.x - b.x, vy = a.y - b.y;
+    double inner = dmath::atan2(ux * vy - uy * vx, ux * vx + uy * vy);  // from the next point to the previous, counterclockwise
+    if (area2 < 0) inner = -inner;
+    if (inner < 0) inner += 2 * kPi;
+    return inner * 180.0 / kPi < boundDeg;
+  };
   std::vector<uint32_t> apexSamples;  // the small corners on this patch's boundary, and their boundary points
   std::vector<uint32_t> apexPoint;
   for (uint32_t i = 0; i < bp.size(); ++i)
-    if (corner(bp[i].sample) && std::find(apexSamples.begin(), apexSamples.end(), bp[i].sample) == apexSamples.end())
+    if (corner(bp[i].sample) && std::find(apexSamples.begin(), apexSamples.end(), bp[i].sample) == apexSamples.end() &&
+        smallWedge(i))
       apexSamples.push_back(bp[i].sample), apexPoint.push_back(i);
   if (apexSamples.empty()) return;
   apexOf.assign(points, planar::kNoApex);
   chainOf.assign(points, planar::kNoApex);
-  const auto& loop = w.pm.boundaryLoops[0];
   for (uint32_t i = 0; i < bp.size(); ++i) {
     const F::CurveSample& smp = cm.samples[bp[i].sample];
     if (smp.vertex != kNone && surf.seg.vertexCorner[smp.vertex]) continue;  // a corner ends every chain
@@ -320,7 +346,8 @@ bool refineAndLift(const Surface& surf, const RemeshOptions& opt, const Meshing&
   // the nearer corner of a curve between two is the right one at any bound; at 30° and below the
   // first one is kept for now, as their outputs are (the nearer one there: 5 models change, 7-10 %
   // fewer triangles on 4, bench/results/deg35-2026-12-03.md)
-  cornerChains(surf, m, w, bp, pslg.points.size() / 2, opt.minAngle + kPlanarAngleMargin > kPlanarMaxDeg, ro.apexOf, ro.chainOf);
+  cornerChains(surf, m, w, bp, pslg.points.size() / 2, opt.minAngle + kPlanarAngleMargin > kPlanarMaxDeg, opt.minAngle, ro.apexOf,
+               ro.chainOf);
   planar::RefineResult rr;
   try {
     rr = planar::refinePslg(pslg, ro);

@@ -161,10 +161,10 @@ TEST_CASE("remesh: a corner wedge two patches close alike is opened (camel, feat
   checkRemesh(rr.mesh, o, "camel.off at 30 degrees", false, false);
 }
 
-// lion-head at 0.02 takes certificate rounds and a repair: every stage of the table runs, in its
-// order.
+// ALSTOM_TEST4 (coarse CAD) at 0.02 takes certificate rounds and a repair: every stage of the
+// table runs, in its order.
 TEST_CASE("remesh: progress comes in the stage table's order, and the report times every stage") {
-  ReadResult rr = readMesh(test::readFile(std::string(CONFORMESH_DATA_DIR) + "/lion-head.off"));
+  ReadResult rr = readMesh(test::readFile(std::string(CONFORMESH_DATA_DIR) + "/ALSTOM_TEST4.off"));
   RemeshOptions o;
   o.targetEdgeLengthRel = 0.02;
   o.computeHausdorff = false;
@@ -312,4 +312,55 @@ TEST_CASE("remesh: a 10 degree corner is exempt with its own triangles only (tou
     skinny += quality::angleStats(MeshBuffers{{P(tv[0])[0], P(tv[0])[1], 0, P(tv[1])[0], P(tv[1])[1], 0, P(tv[2])[0], P(tv[2])[1], 0}, {0, 1, 2}, {}}).minAngle < 30;
   }
   MESSAGE("knife: " << ec.triangles.size() << " exempt triangles (" << skinny << " below 30 deg) of " << m.triangleCount());
+}
+
+// A flat disk whose centre, vertex 0, is where three user curves meet: wedges of 22° (an exempt
+// corner), 31° and 307°. The 31° wedge is above the 3D bound but below the refinement's planar
+// one (the bound plus its margin): its triangles must hold the bound, not be left as the 22°
+// wedge's are (spot's seams at the page's defaults met there at 30.8° and 21.7°).
+TEST_CASE("remesh: a wedge above the bound beside an exempt one at the same corner holds the bound") {
+  testshapes::Builder b;
+  const double pi = 3.14159265358979323846;
+  std::vector<double> rays = {0.0, 22.0, 53.0};
+  for (int i = 1; i < 10; ++i) rays.push_back(53.0 + 307.0 * i / 10);
+  const int rings = 12;
+  auto at = [&](int k, size_t i) {
+    const double r = double(k) / rings, a = rays[i % rays.size()] * pi / 180;
+    return b.vertex(r * std::cos(a), r * std::sin(a), 0.0);
+  };
+  const uint32_t centre = at(0, 0);
+  for (size_t i = 0; i < rays.size(); ++i) b.tri(centre, at(1, i), at(1, i + 1));
+  for (int k = 1; k < rings; ++k)
+    for (size_t i = 0; i < rays.size(); ++i) {
+      b.tri(at(k, i), at(k + 1, i), at(k + 1, i + 1));
+      b.tri(at(k, i), at(k + 1, i + 1), at(k, i + 1));
+    }
+  // before the rule both targets left a triangle of 24.3° there, at every certificate round
+  for (double target : {0.02, 0.04}) {
+    RemeshOptions o;
+    o.targetEdgeLengthRel = target;
+    o.hausdorffSamples = 2000;
+    for (size_t i = 0; i < 3; ++i)
+      for (int k = 0; k < rings; ++k) o.featureEdges.push_back({at(k, i), at(k + 1, i)});
+    RemeshResult r = checkRemesh(b.m, o, "three rays", false);
+    REQUIRE(r.report.exemptCorners.size() == 1);
+    CHECK(r.report.exemptCorners[0].vertex == centre);
+    CHECK(r.report.exemptCorners[0].angle == doctest::Approx(22.0).epsilon(1e-6));
+    // every triangle in the 31° wedge (centroid at a polar angle in (22°, 53°)) holds the bound
+    const MeshBuffers& m = r.mesh;
+    size_t inWedge = 0;
+    for (size_t t = 0; t < m.triangleCount(); ++t) {
+      double cx = 0, cy = 0;
+      for (int c = 0; c < 3; ++c)
+        cx += m.positions[3 * m.triangles[3 * t + c]] / 3, cy += m.positions[3 * m.triangles[3 * t + c] + 1] / 3;
+      const double polar = std::atan2(cy, cx) * 180 / pi;
+      if (!(polar > 22.0 && polar < 53.0)) continue;
+      ++inWedge;
+      MeshBuffers one{{}, {0, 1, 2}, {}};
+      for (int c = 0; c < 3; ++c)
+        for (int k = 0; k < 3; ++k) one.positions.push_back(m.positions[3 * m.triangles[3 * t + c] + k]);
+      CHECK(quality::angleStats(one).minAngle >= o.minAngle - 1e-9);
+    }
+    CHECK(inWedge > 10);
+  }
 }
