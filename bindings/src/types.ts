@@ -443,6 +443,8 @@ export interface RemeshReport {
   /** Vertex moves and edge flips accepted by the optimization. */
   optimizeMoves: number;
   optimizeFlips: number;
+  /** Vertices the optimization added where its moves and flips left a triangle below the bound. */
+  optimizeSplits: number;
   /** Free vertices moved over the surface where the 3D angle certificate left a triangle below the bound. */
   repairMoves: number;
   /** Output triangles predicted from the sizing field before refinement (checked against maxTriangles). */

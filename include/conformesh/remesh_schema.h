@@ -138,7 +138,8 @@ inline bool parseBoundary(const std::string& s, Boundary& b) {
 // seams; flowIterations: Newton iterations per patch; patchSplitsForScale: geodesic Voronoi splits
 // of patches whose flattening failed or spread its scale past maxScaleRatio; sinkCuts: patches cut
 // in two through the point their scale sank to or a spike tip (features/sink_cuts.h); optimizeMoves, optimizeFlips: accepted by the
-// optimization (moves include curve-sample slides); repairMoves: free vertices moved where the
+// optimization (moves include curve-sample slides); optimizeSplits: vertices the optimization added
+// where its moves and flips left a triangle below the bound (remesh/split_below_bound.h); repairMoves: free vertices moved where the
 // certificate left a triangle below the bound (remesh/repair.h); estimatedTriangles: the output size
 // predicted before refinement (remesh/limits.h); topologyPreserved: false only with
 // keepDefectiveOutput; seconds: per stage (conformesh/stages.h).
@@ -156,7 +157,8 @@ inline bool parseBoundary(const std::string& s, Boundary& b) {
   X(size_t, patches, 0) X(size_t, curves, 0) X(size_t, curveSamples, 0)                                                 \
   X(std::vector<int>, flowIterations, {}) X(size_t, patchSplitsForScale, 0) X(size_t, sinkCuts, 0)                       \
   X(int, conformingRounds, 0) X(int, certificateRounds, 0)                                                              \
-  X(size_t, optimizeMoves, 0) X(size_t, optimizeFlips, 0) X(size_t, repairMoves, 0)                                     \
+  X(size_t, optimizeMoves, 0) X(size_t, optimizeFlips, 0) X(size_t, optimizeSplits, 0)                                  \
+  X(size_t, repairMoves, 0)                                                                                             \
   X(double, estimatedTriangles, 0) X(bool, topologyPreserved, false)                                                    \
   X(StageSeconds, seconds, {}) X(std::vector<std::string>, warnings, {})
 

@@ -12,6 +12,7 @@
 #include "planar/predicates.h"
 #include "planar/refine.h"
 #include "remesh/curve_samples.h"
+#include "remesh/split_below_bound.h"
 
 namespace conformesh::pipeline {
 namespace {
@@ -509,6 +510,10 @@ OptimizeResult optimizeMesh(const Surface& surf, const RemeshOptions& opt, const
   if (opt.minAngle + kPlanarAngleMargin > kPlanarMaxDeg) oo.boundPasses = kBoundPasses;
   // per vertex: the layout face its latest lift landed in, where the next one starts looking
   auto lift = [&](uint32_t v, double x, double y, Vec3& out) {
+    if (v >= w.layoutFaces.size()) {  // a vertex splitBelowBound adds
+      w.layoutFaces.resize(v + 1, -1);
+      w.liftFaces.resize(v + 1, kNone);
+    }
     PullbackPoint q;
     if (!liftPoint(w, x, y, q, w.layoutFaces[v])) return false;
     w.layoutFaces[v] = q.layoutFace;
@@ -535,10 +540,20 @@ OptimizeResult optimizeMesh(const Surface& surf, const RemeshOptions& opt, const
   // between two optimizations of one meshing only slides move vertices, and `active` has every
   // vertex of a slid sample's stars
   optimization::OptimizeStats st = optimization::optimizePatch(w.planarPoints, w.triangles, pos, fixed, lift, oo, active, guard, &w.optimizeCache);
-  for (size_t v = 0; v < nv; ++v)
+  // what the moves and flips could not lift to the bound, a new vertex may
+  const optimization::SplitStats sp = optimization::splitBelowBound(w.planarPoints, w.triangles, pos, fixed, lift, oo, guard);
+  const size_t nvNow = w.planarPoints.size() / 2;
+  w.localToGlobal.resize(nvNow, kNone);
+  w.interiorPositions.resize(nvNow);
+  w.layoutFaces.resize(nvNow, -1);
+  w.liftFaces.resize(nvNow, kNone);
+  if (sp.splits > 0) w.optimizeCache = {};
+  for (size_t v = 0; v < nvNow; ++v)
     if (!fixed[v]) w.interiorPositions[v] = pos[v];
-  res.moves = st.moves;
-  res.flips = st.flips;
+  res.moves = st.moves + sp.optimize.moves;
+  res.flips = st.flips + sp.optimize.flips;
+  res.splits = sp.splits;
+  res.splitsCapped = sp.capped;
   return res;
 }
 

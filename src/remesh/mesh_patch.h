@@ -52,6 +52,8 @@ void commitMeshing(const Surface& surf, Meshing& m, uint32_t p, PatchMeshing& r,
 //! What optimizeMesh did, to be added to the report.
 struct OptimizeResult {
   size_t moves = 0, flips = 0;
+  size_t splits = 0;          //!< vertices added where moves and flips left the bound (split_below_bound.h)
+  bool splitsCapped = false;  //!< the splits stopped at their cap with triangles below the bound left
 };
 
 //! Optimize patch w's latest meshing in its plane, judged in 3D; `active` (empty: all) the

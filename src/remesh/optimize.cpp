@@ -471,8 +471,9 @@ inline void relink(Mesh& m, uint32_t t, uint32_t from, uint32_t to) {
     }
 }
 
-// One pass of flips: an interior edge flips when its quad is strictly convex in the plane and
-// the smaller 3D min angle of its two triangles gets larger. Returns the number of flips.
+// One pass of flips: an interior edge flips when its quad is strictly convex in the plane, the
+// smaller 3D min angle of its two triangles gets larger, and the new edge does not join two
+// fixed vertices. Returns the number of flips.
 // Edges are visited by triangle (each from its triangle of smaller index), only those with an
 // end in `region`: an edge whose quad did not change since the last pass refused it would
 // refuse it again. Only triangles with a vertex in `region` can have such an edge, and the
@@ -499,6 +500,9 @@ size_t flipPass(Mesh& m, std::vector<uint8_t>& touched, const std::vector<uint8_
       if (v1[kNext[d]] != x) continue;                     // not a consistently oriented pair
       const uint32_t c1 = v1[kPrev[d]];
       if (c0 == c1) continue;
+      // never a chord between two boundary vertices: the patch across their curves may draw the
+      // same one (a stitch defect), and no move mends a triangle of three fixed vertices
+      if (m.fixed[c0] && m.fixed[c1]) continue;
       // new triangles (c0, x, c1) and (c1, y, c0). Most edges do not flip: the first new angle
       // decides that for nearly all, so it is asked first
       const double before = std::min(m.minAngle[t0], m.minAngle[t1]);

@@ -8,9 +8,10 @@
 // triangulation, and both are accepted only when the lifted 3D triangles get better: the star's
 // smallest 3D angle never drops below the bound (or below its own value when it is already under
 // the bound), no planar triangle inverts, and every vertex stays on the input surface (it is
-// lifted by the pull-back). Boundary vertices (curve samples) never move here and boundary edges
-// never flip, so features and the stitch between patches are untouched; the pipeline slides the
-// curve samples along their curves itself (remesh/slide_samples.h), in every patch at once.
+// lifted by the pull-back). Boundary vertices (curve samples) never move here, boundary edges
+// never flip, and no flip makes an edge between two of them (a chord the patch across may draw
+// too), so features and the stitch between patches are untouched; the pipeline slides the curve
+// samples along their curves itself (remesh/slide_samples.h), in every patch at once.
 #pragma once
 
 #include <cstdint>

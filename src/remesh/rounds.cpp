@@ -50,9 +50,12 @@ void optimizePatches(const Surface& surf, const RemeshOptions& opt, Meshing& m, 
       [&](size_t finished) { report(finished, todo.size()); });
   for (const std::exception_ptr& e : error)
     if (e) std::rethrow_exception(e);
-  for (const OptimizeResult& r : done) {
-    rep.optimizeMoves += r.moves;
-    rep.optimizeFlips += r.flips;
+  for (size_t i = 0; i < done.size(); ++i) {
+    rep.optimizeMoves += done[i].moves;
+    rep.optimizeFlips += done[i].flips;
+    rep.optimizeSplits += done[i].splits;
+    if (done[i].splitsCapped)
+      rep.warnings.push_back("patch " + std::to_string(todo[i]) + ": vertices added by the optimization stopped at their cap with triangles below the bound left");
   }
 }
 

@@ -83,6 +83,7 @@ export const QUALITY: readonly QualityEntry[] = [
   { key: 'certificateRounds', label: '3D angle check rounds', unit: 'count', group: 'pipeline' },
   { key: 'optimizeMoves', label: 'vertex moves by the optimization', unit: 'count', group: 'pipeline' },
   { key: 'optimizeFlips', label: 'edge flips by the optimization', unit: 'count', group: 'pipeline' },
+  { key: 'optimizeSplits', label: 'vertices added by the optimization', unit: 'count', group: 'pipeline' },
   { key: 'repairMoves', label: 'vertices moved to repair an angle', unit: 'count', group: 'pipeline' },
   ...REMESH_STAGES.map((s): QualityEntry => ({ key: `seconds.${s.key}`, label: `time: ${s.label}`, unit: 's', group: 'pipeline' })),
   { key: 'seconds.total', label: 'time: total in the library', unit: 's', group: 'pipeline' },

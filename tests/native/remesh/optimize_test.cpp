@@ -387,3 +387,25 @@ TEST_CASE("optimize: passes aimed at the bound leave fewer triangles below it, a
   CHECK(left[0] > 0);  // the one pass leaves some: the test can tell
   CHECK(left[1] < left[0]);
 }
+
+TEST_CASE("optimize: no flip joins two boundary vertices (a chord the patch across may draw too)") {
+  // an hourglass whose waist c0 = (0, -0.3), c1 = (0, 0.3) is on the boundary; free x, y at
+  // (∓1, 0) share the long edge x-y, whose triangles have 16.7° corners at x and y. Flipping it
+  // to c0-c1 gives 33.4°, but c0-c1 would be a chord between two curve samples.
+  std::vector<double> xy = {0, -0.3, 2, -1, 2, 1, 0, 0.3, -2, 1, -2, -1, -1, 0, 1, 0};
+  const uint32_t c0 = 0, p1 = 1, p2 = 2, c1 = 3, p3 = 4, p4 = 5, x = 6, y = 7;
+  std::vector<uint32_t> tri = {y, x, c0, x, y, c1, c0, p1, y, p1, p2, y, p2, c1, y, c1, p3, x, p3, p4, x, p4, c0, x};
+  std::vector<uint8_t> fixed = {1, 1, 1, 1, 1, 1, 0, 0};
+  std::vector<Vec3> pos;
+  for (size_t v = 0; v < fixed.size(); ++v) pos.push_back({xy[2 * v], xy[2 * v + 1], 0});
+  // no vertex can move (every lift fails): only flips
+  const optimization::LiftFn stay = [](uint32_t, double, double, Vec3&) { return false; };
+  optimization::OptimizeOptions o;
+  const optimization::OptimizeStats st = optimization::optimizePatch(xy, tri, pos, fixed, stay, o);
+  CHECK(st.moves == 0);
+  for (size_t t = 0; t < tri.size(); t += 3) {
+    const bool hasC0 = tri[t] == c0 || tri[t + 1] == c0 || tri[t + 2] == c0;
+    const bool hasC1 = tri[t] == c1 || tri[t + 1] == c1 || tri[t + 2] == c1;
+    CHECK_FALSE((hasC0 && hasC1));
+  }
+}
