@@ -65,7 +65,8 @@ inline bool parseBoundary(const std::string& s, Boundary& b) {
     "--max-error as a fraction of the bounding-box diagonal; 0: off")                                                   \
   X(double, gradation, 1.5, 1, 1e308, "--gradation", "G", "bound on the ratio of neighbouring edge lengths, > 1")       \
   X(double, minEdgeLength, -1.0, -1e308, 1e308, "--min-edge-length", "L",                                               \
-    "shortest edge the sizing allows (input units); < 0: a tenth of the target edge length")                            \
+    "shortest edge the sizing allows (input units); < 0: a tenth of the target edge length, or under an error bound "   \
+    "the chord tolerance where smaller")                                                                                \
   X(double, maxEdgeLength, -1.0, -1e308, 1e308, "--max-edge-length", "L",                                               \
     "longest edge the sizing allows (input units); < 0: the target edge length")                                        \
   X(double, featureAngle, 40.0, 0, 180, "--feature-angle", "DEG",                                                       \

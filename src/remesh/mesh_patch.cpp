@@ -34,8 +34,9 @@ constexpr int kBoundPasses = 8;
 // not stay at the bound, while the new vertex stays 1.3 edges away and insertion radii still grow
 // (docs/decisions/0012-offcenter-apex.md).
 constexpr double kOffcenterApexDeg = 45.0;
-// Shortest boundary piece a patch refinement may split, in the sizing's smallest edge length
-// (minEdgeLength, target/10 by default), on the surface: far below any size the output can mean.
+// Shortest boundary piece a patch refinement may split, in Surface::splitFloorLength (the
+// sizing's smallest edge length, target/10 by default), on the surface: far below any size the
+// output can mean.
 // Near a small angle between two curves the refinements of the two sides can keep splitting
 // each other's segments (each side's concentric shells are not the other's) down to 1e-9 of the
 // diagonal, every new triangle there below the bound (docs/decisions/0002).
@@ -318,9 +319,10 @@ bool refineAndLift(const Surface& surf, const RemeshOptions& opt, const Meshing&
   // and above the resolution at which two splits of one input edge are told apart (the sample
   // dedupe in addSplitSample); refinements that keep splitting each other's segments stop here.
   // A planar length l is l / s on the surface where the planar/3D scale is s: with the patch's
-  // smallest scale the limit is at most kMinSegmentFactor · minLength on the surface anywhere in
-  // the patch (less where the scale is larger), so it never stops a split the sizing asks for.
-  ro.minSegmentLength = kMinSegmentFactor * surf.sizing.minLength * *std::min_element(w.scaleSub.begin(), w.scaleSub.end());
+  // smallest scale the limit is at most kMinSegmentFactor · splitFloorLength on the surface
+  // anywhere in the patch (less where the scale is larger), so it never stops a split the sizing
+  // asks for.
+  ro.minSegmentLength = kMinSegmentFactor * surf.splitFloorLength * *std::min_element(w.scaleSub.begin(), w.scaleSub.end());
   // Longest-edge bound of the refinement vs the mean edge length it gives: calibrated so the
   // mean output edge length in flat regions is the target.
   const double kSizeFactor = 1.3;

@@ -73,6 +73,10 @@ struct Surface {
   F::Segmentation seg;
   F::SizingField sizing;
   double chordTolerance = 0;  //!< in the input's units (the sizing's, features/sizing.h)
+  //! The length the refinement's boundary splits stop at a fixed fraction of (mesh_patch.cpp):
+  //! the sizing's smallest length, but under an error bound, whose sizes may go below a tenth of
+  //! the target near spike tips, still that tenth (two splits of one input edge told apart).
+  double splitFloorLength = 0;
 
   const MeshBuffers& input() const { return vm.buffers; }
   //! The mesh g was built from (the same vertex and face indices).

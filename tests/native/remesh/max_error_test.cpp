@@ -39,6 +39,14 @@ TEST_CASE("max error: a torus within two bounds, the looser one coarser") {
   CHECK(coarse.mesh.triangleCount() < fine.mesh.triangleCount());
 }
 
+TEST_CASE("max error: a spike tip off the curves is reached below a tenth of the target") {
+  // a horn of angle sum about 220° at its tip, no crease reaching it (testshapes::spike): edges
+  // of a tenth of the target around the tip cut about 8e-4 of the diagonal off it, above the
+  // bound of 5e-4, whatever the chord tolerance
+  const RemeshResult r = withinError(testshapes::spike(0.13, 0.1), 5e-4);
+  CHECK(r.report.hausdorffRel > 0);
+}
+
 TEST_CASE("max error: a cube (flat faces) keeps its edges and grows its triangles") {
   // flat faces: no chord error anywhere, so the sizes are the largest allowed, far above the
   // default target edge length
