@@ -32,9 +32,10 @@ struct SplitStats {
 
 //! Arrays as optimizePatch takes them (optimize.h); `fixed` grows with `xy` and `pos` (a new
 //! vertex is free), and lift(v, ...) is called with v up to the new vertex count - 1. The
-//! triangles below `o.minAngleDeg` (3D) are tried in index order, each once: those whose smallest
-//! corner is a fixed vertex with less than the bound in all of its patch triangles (an input
-//! corner) are left. Deterministic.
+//! triangles below `o.minAngleDeg` (3D) are tried in index order, once per pass, and the passes
+//! repeat while one keeps a split. Left alone: triangles of three fixed vertices (a strip
+//! between curves, a corner's wedge), and those whose smallest corner is a fixed vertex with less
+//! than the bound in all of its patch triangles (an input corner). Deterministic.
 SplitStats splitBelowBound(std::vector<double>& xy, std::vector<uint32_t>& triangles, std::vector<Vec3>& pos,
                            std::vector<uint8_t>& fixed, const LiftFn& lift, const OptimizeOptions& o,
                            const SurfaceSamples& guard, const SplitOptions& so = {});
