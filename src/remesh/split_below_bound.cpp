@@ -4,16 +4,13 @@
 #include <cmath>
 
 #include "core/constants.h"
-#include "core/detmath.h"
+#include "features/edge_graph.h"
 
 namespace conformesh::optimization {
 namespace {
 
 // The 3D angle at p of the triangle (p, q, r), in degrees.
-double angleAt(const Vec3& p, const Vec3& q, const Vec3& r) {
-  const Vec3 u = q - p, v = r - p;
-  return dmath::atan2(norm(cross(u, v)), dot(u, v)) * (180.0 / kPi);
-}
+double angleAt(const Vec3& p, const Vec3& q, const Vec3& r) { return features::angleBetween(q - p, r - p) * (180.0 / kPi); }
 
 size_t countBelow(const std::vector<uint32_t>& tri, const std::vector<Vec3>& pos, double bound) {
   size_t n = 0;
@@ -47,17 +44,18 @@ SplitStats splitBelowBound(std::vector<double>& xy, std::vector<uint32_t>& trian
                            const SurfaceSamples& guard, const SplitOptions& so) {
   SplitStats st;
   const double bound = o.minAngleDeg;
-  size_t below = countBelow(triangles, pos, bound);
+  size_t below = 0;  // triangles below the bound in the patch
   OptimizeOptions local = o;
   local.boundPasses = std::max(o.boundPasses, so.boundPasses);
   // a pass over the triangles below the bound, again while one keeps a split (a kept split's
   // optimization flips and moves around it: the triangles there are new)
-  for (bool again = below > 0; again && !st.capped;) {
+  for (bool again = true; again && !st.capped;) {
     again = false;
     std::vector<uint32_t> todo;
     for (size_t t = 0; t < triangles.size() / 3; ++t)
       if (minAngleDeg3(pos[triangles[3 * t]], pos[triangles[3 * t + 1]], pos[triangles[3 * t + 2]]) < bound)
         todo.push_back(uint32_t(t));
+    below = todo.size();
     for (uint32_t t : todo) {
       const uint32_t* v = &triangles[3 * size_t(t)];
       double ang[3];

@@ -5,6 +5,7 @@
 #include <random>
 #include <set>
 
+#include "remesh/planar_checks.h"
 #include "remesh/optimize.h"
 
 using namespace conformesh;
@@ -41,18 +42,7 @@ double minAngleOf(const std::vector<uint32_t>& tri, const std::vector<Vec3>& pos
   return optimization::minAngleDeg3(pos[tri[3 * t]], pos[tri[3 * t + 1]], pos[tri[3 * t + 2]]);
 }
 
-std::set<std::pair<uint32_t, uint32_t>> boundaryEdges(const std::vector<uint32_t>& tri) {
-  std::multiset<std::pair<uint32_t, uint32_t>> all;
-  for (size_t t = 0; t < tri.size(); t += 3)
-    for (int c = 0; c < 3; ++c) {
-      uint32_t a = tri[t + c], b = tri[t + (c + 1) % 3];
-      all.insert({std::min(a, b), std::max(a, b)});
-    }
-  std::set<std::pair<uint32_t, uint32_t>> out;
-  for (const auto& e : all)
-    if (all.count(e) == 1) out.insert(e);
-  return out;
-}
+using testing::boundaryEdges;
 
 void checkOptimize(const std::function<Vec3(double, double)>& surface, const char* name) {
   INFO(name);

@@ -4,6 +4,7 @@
 #include <array>
 #include <set>
 
+#include "remesh/planar_checks.h"
 #include "remesh/split_below_bound.h"
 
 using namespace conformesh;
@@ -38,18 +39,7 @@ size_t below(const Planar& p, double bound) {
   return n;
 }
 
-std::set<std::pair<uint32_t, uint32_t>> boundaryEdges(const std::vector<uint32_t>& tri) {
-  std::multiset<std::pair<uint32_t, uint32_t>> all;
-  for (size_t t = 0; t < tri.size(); t += 3)
-    for (int c = 0; c < 3; ++c) {
-      const uint32_t a = tri[t + c], b = tri[t + (c + 1) % 3];
-      all.insert({std::min(a, b), std::max(a, b)});
-    }
-  std::set<std::pair<uint32_t, uint32_t>> out;
-  for (const auto& e : all)
-    if (all.count(e) == 1) out.insert(e);
-  return out;
-}
+using testing::boundaryEdges;
 
 const optimization::LiftFn kPlane = [](uint32_t, double x, double y, Vec3& out) {
   out = {x, y, 0};
