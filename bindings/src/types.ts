@@ -445,6 +445,8 @@ export interface RemeshReport {
   optimizeFlips: number;
   /** Vertices the optimization added where its moves and flips left a triangle below the bound. */
   optimizeSplits: number;
+  /** Edges the optimization collapsed toward regular vertex valences (above a 30° bound). */
+  optimizeCollapses: number;
   /** Free vertices moved over the surface where the 3D angle certificate left a triangle below the bound. */
   repairMoves: number;
   /** Output triangles predicted from the sizing field before refinement (checked against maxTriangles). */

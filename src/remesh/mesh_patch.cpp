@@ -34,6 +34,12 @@ constexpr int kBoundPasses = 8;
 // not stay at the bound, while the new vertex stays 1.3 edges away and insertion radii still grow
 // (docs/decisions/0012-offcenter-apex.md).
 constexpr double kOffcenterApexDeg = 45.0;
+// The same above kPlanarMaxDeg (a 3D bound of 35°): nearer equilateral there, where the
+// optimization must lift every free triangle above the bound and its moves and valence
+// operations start from the refinement's shapes (mean min angle at 35° on the 19 models of
+// ../shared/data 51.3-53.5° with it, 50.4-51.7° at 45° without the valence operations;
+// docs/decisions/0035).
+constexpr double kOffcenterApexHighDeg = 50.0;
 // Shortest boundary piece a patch refinement may split, in Surface::splitFloorLength (the
 // sizing's smallest edge length, target/10 by default), on the surface: far below any size the
 // output can mean.
@@ -310,11 +316,12 @@ bool refineAndLift(const Surface& surf, const RemeshOptions& opt, const Meshing&
   // optimization cannot move; it lifts the others in 3D (optimizeMesh).
   ro.minAngleDeg = std::min(opt.minAngle + kPlanarAngleMargin, kPlanarMaxDeg);
   ro.segmentTriangleMinAngleDeg = opt.minAngle + kPlanarAngleMargin;
-  // off-center factor for kOffcenterApexDeg: the off-center of factor f sits f / (2 tan(θ/2))
+  // off-center factor for the apex angle: the off-center of factor f sits f / (2 tan(θ/2))
   // shortest-edge lengths from that edge, where it sees the edge under 2 atan(tan(θ/2) / f)
   // (refine.h); never above the planar default (bounds near 45° would otherwise get it)
+  const bool aboveMax = opt.minAngle + kPlanarAngleMargin > kPlanarMaxDeg;
   if (ro.minAngleDeg > 0)
-    ro.offcenterFactor = std::min(0.95, dmath::tan(0.5 * ro.minAngleDeg * kPi / 180) / dmath::tan(0.5 * kOffcenterApexDeg * kPi / 180));
+    ro.offcenterFactor = std::min(0.95, dmath::tan(0.5 * ro.minAngleDeg * kPi / 180) / dmath::tan(0.5 * (aboveMax ? kOffcenterApexHighDeg : kOffcenterApexDeg) * kPi / 180));
   // Boundary pieces shorter than this are not split: far below any size the output can mean,
   // and above the resolution at which two splits of one input edge are told apart (the sample
   // dedupe in addSplitSample); refinements that keep splitting each other's segments stop here.
@@ -491,6 +498,35 @@ void meshPatch(const Surface& surf, const RemeshOptions& opt, Meshing& m, uint32
   finishMeshing(surf, m, p, r, busy);
 }
 
+// The free vertices the optimization's collapses left without triangles go; the others are
+// renumbered in order (the curve samples keep their places in localToGlobal).
+static void dropUnusedVertices(PatchWork& w) {
+  const size_t nv = w.planarPoints.size() / 2;
+  std::vector<uint8_t> used(nv, 0);
+  for (const uint32_t v : w.triangles) used[v] = 1;
+  std::vector<uint32_t> to(nv, kNone);
+  size_t n = 0;
+  for (size_t v = 0; v < nv; ++v) {
+    if (!used[v] && w.localToGlobal[v] == kNone) continue;
+    to[v] = uint32_t(n);
+    w.planarPoints[2 * n] = w.planarPoints[2 * v];
+    w.planarPoints[2 * n + 1] = w.planarPoints[2 * v + 1];
+    w.localToGlobal[n] = w.localToGlobal[v];
+    w.interiorPositions[n] = w.interiorPositions[v];
+    w.layoutFaces[n] = w.layoutFaces[v];
+    w.liftFaces[n] = w.liftFaces[v];
+    ++n;
+  }
+  if (n == nv) return;
+  w.planarPoints.resize(2 * n);
+  w.localToGlobal.resize(n);
+  w.interiorPositions.resize(n);
+  w.layoutFaces.resize(n);
+  w.liftFaces.resize(n);
+  for (uint32_t& v : w.triangles) v = to[v];
+  w.optimizeCache = {};
+}
+
 OptimizeResult optimizeMesh(const Surface& surf, const RemeshOptions& opt, const CurveSamples& samples, PatchWork& w,
                             const std::vector<uint8_t>& active) {
   OptimizeResult res;
@@ -508,8 +544,13 @@ OptimizeResult optimizeMesh(const Surface& surf, const RemeshOptions& opt, const
   oo.maxIterations = opt.optimizeIterations;
   oo.tolerance = opt.optimizeTolerance;
   // the planar refinement left the interior triangles below the bound and its margin: passes
-  // aimed at those still below the bound in 3D
-  if (opt.minAngle + kPlanarAngleMargin > kPlanarMaxDeg) oo.boundPasses = kBoundPasses;
+  // aimed at those still below the bound in 3D, the valence operations and one pass more (the
+  // moves even out the stars the flips and collapses change)
+  if (opt.minAngle + kPlanarAngleMargin > kPlanarMaxDeg) {
+    oo.boundPasses = kBoundPasses;
+    oo.valenceOperations = true;
+    ++oo.maxIterations;
+  }
   // per vertex: the layout face its latest lift landed in, where the next one starts looking
   auto lift = [&](uint32_t v, double x, double y, Vec3& out) {
     if (v >= w.layoutFaces.size()) {  // a vertex splitBelowBound adds
@@ -552,9 +593,11 @@ OptimizeResult optimizeMesh(const Surface& surf, const RemeshOptions& opt, const
   if (sp.splits > 0) w.optimizeCache = {};
   for (size_t v = 0; v < nvNow; ++v)
     if (!fixed[v]) w.interiorPositions[v] = pos[v];
+  dropUnusedVertices(w);
   res.moves = st.moves + sp.optimize.moves;
   res.flips = st.flips + sp.optimize.flips;
   res.splits = sp.splits;
+  res.collapses = st.collapses + sp.optimize.collapses;
   res.splitsCapped = sp.capped;
   return res;
 }

@@ -53,6 +53,7 @@ void commitMeshing(const Surface& surf, Meshing& m, uint32_t p, PatchMeshing& r,
 struct OptimizeResult {
   size_t moves = 0, flips = 0;
   size_t splits = 0;          //!< vertices added where moves and flips left the bound (split_below_bound.h)
+  size_t collapses = 0;       //!< edges collapsed toward regular valences (OptimizeOptions::valenceOperations)
   bool splitsCapped = false;  //!< the splits stopped at their cap with triangles below the bound left
 };
 

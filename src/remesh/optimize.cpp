@@ -93,6 +93,9 @@ struct Mesh {
   std::vector<double> err;
   std::vector<uint32_t> pending;  // rebucket's scratch list (kept to spare an allocation per move)
   std::vector<double> fresh;      // tryMove's: the star's new min angles
+  // the valence operations (OptimizeOptions::valenceOperations): per vertex its triangle count
+  // and the count its planar angle sum asks for (6 inside the patch); empty when off
+  std::vector<int> deg, ideal;
 
   const double* p(uint32_t v) const { return &xy[2 * size_t(v)]; }
   double triMin(uint32_t t) const {
@@ -506,10 +509,23 @@ size_t flipPass(Mesh& m, std::vector<uint8_t>& touched, const std::vector<uint8_
       // new triangles (c0, x, c1) and (c1, y, c0). Most edges do not flip: the first new angle
       // decides that for nearly all, so it is asked first
       const double before = std::min(m.minAngle[t0], m.minAngle[t1]);
+      // with the valence operations: the change of the four vertices' squared deviations from
+      // their ideal triangle counts; a flip that lowers it is kept at any angles not below the
+      // bound, and a flip for the angles that raises it only where a triangle is below the
+      // bound (else it would undo the first)
+      int dv = 0;
+      if (!m.deg.empty()) {
+        auto d2 = [&](uint32_t v, int delta) { const int e = m.deg[v] + delta - m.ideal[v]; return e * e; };
+        dv = d2(x, -1) + d2(y, -1) + d2(c0, 1) + d2(c1, 1) - d2(x, 0) - d2(y, 0) - d2(c0, 0) - d2(c1, 0);
+      }
+      const double valenceFloor = dv < 0 ? bound + kApproxErrDeg : INFINITY;
       const double n0 = minAngleDeg3Approx(m.pos[c0], m.pos[x], m.pos[c1]);
-      if (!(n0 > before + 1e-6)) continue;
+      if (!(n0 > before + 1e-6) && !(n0 >= valenceFloor)) continue;
       const double n1 = minAngleDeg3Approx(m.pos[c1], m.pos[y], m.pos[c0]);
-      if (!(n1 > before + 1e-6)) continue;
+      if (!(n1 > before + 1e-6) && !(n1 >= valenceFloor)) continue;
+      if (const double n = std::min(n0, n1);
+          !(n > before + 1e-6 && (dv <= 0 || before < bound + kApproxErrDeg)) && !(n >= valenceFloor))
+        continue;
       // both must be strictly positive in the plane
       const double l2 = sq(m.p(c0)[0] - m.p(c1)[0]) + sq(m.p(c0)[1] - m.p(c1)[1]);
       if (!(orient2d(m.p(c0), m.p(x), m.p(c1)) > 1e-6 * l2) || !(orient2d(m.p(c1), m.p(y), m.p(c0)) > 1e-6 * l2)) continue;
@@ -531,6 +547,7 @@ size_t flipPass(Mesh& m, std::vector<uint8_t>& touched, const std::vector<uint8_
       relink(m, nXC1, t1, t0);
       relink(m, nYC0, t0, t1);
       touched[x] = touched[y] = touched[c0] = touched[c1] = 1;
+      if (!m.deg.empty()) --m.deg[x], --m.deg[y], ++m.deg[c0], ++m.deg[c1];
       {
         const uint32_t ts[2] = {t0, t1};
         rebucket(m, ts, 2);
@@ -540,6 +557,132 @@ size_t flipPass(Mesh& m, std::vector<uint8_t>& touched, const std::vector<uint8_
     }
   }
   return flips;
+}
+
+// Half-edge collapses of interior edges (u, w), u free, that bring the triangle counts of u, w
+// and the two opposite vertices nearer their ideal (Mesh::ideal): a 5-valent pair between two
+// 7-valent vertices becomes four regular ones, which no flip can do (valence-driven collapses
+// and flips as in the regularization of Surazhsky and Gotsman, "Explicit surface remeshing",
+// SGP 2003, and Botsch and Kobbelt 2004). u's triangles but the two on the edge take w for u;
+// kept when they stay positive in the plane with their 3D min angles at or above `floor`, the
+// guard keeps the change, the link condition holds (u and w share exactly the two opposite
+// vertices) and no new edge joins two fixed vertices. The collapses of one pass touch disjoint
+// stars; the triangles are compacted after it and each u is left without triangles (the caller
+// drops such vertices). Returns the number of collapses; `touched` gets the changed stars'
+// vertices.
+size_t collapsePass(Mesh& m, std::vector<uint8_t>& touched, double floor) {
+  const size_t nt = m.tri.size() / 3, nv = m.xy.size() / 2;
+  std::vector<uint8_t> locked(nv, 0), dead(nt, 0);
+  std::vector<uint32_t> nu, nw, keep;
+  auto neighbours = [&](uint32_t v, std::vector<uint32_t>& out) {
+    out.clear();
+    for (uint32_t k = m.starStart[v]; k < m.starStart[v + 1]; ++k)
+      for (int c = 0; c < 3; ++c)
+        if (const uint32_t z = m.tri[3 * size_t(m.starTri[k]) + c]; z != v) out.push_back(z);
+    std::sort(out.begin(), out.end());
+    out.erase(std::unique(out.begin(), out.end()), out.end());
+  };
+  auto d2 = [&](uint32_t v, int delta) { const int e = m.deg[v] + delta - m.ideal[v]; return e * e; };
+  size_t count = 0;
+  for (uint32_t t0 = 0; t0 < nt; ++t0) {
+    for (int c = 0; c < 3 && !dead[t0]; ++c) {
+      const uint32_t t1 = m.adj[3 * size_t(t0) + c];
+      if (t1 == kNoTri || t1 < t0 || dead[t1]) continue;
+      const uint32_t* v0 = &m.tri[3 * size_t(t0)];
+      const uint32_t x = v0[c], y = v0[kNext[c]], c0 = v0[kPrev[c]];
+      if (locked[x] || locked[y]) continue;
+      const uint32_t* v1 = &m.tri[3 * size_t(t1)];
+      const int d = cornerOf(v1, y);
+      if (v1[kNext[d]] != x) continue;
+      const uint32_t c1 = v1[kPrev[d]];
+      for (int side = 0; side < 2; ++side) {
+        const uint32_t u = side ? x : y, w = side ? y : x;
+        if (m.fixed[u]) continue;
+        if (d2(w, m.deg[u] - 4) + d2(c0, -1) + d2(c1, -1) - d2(w, 0) - d2(c0, 0) - d2(c1, 0) - d2(u, 0) >= 0) continue;
+        neighbours(u, nu);
+        if (nu.size() != m.starStart[u + 1] - m.starStart[u]) continue;  // u's star is not a closed disk
+        neighbours(w, nw);
+        size_t common = 0;
+        bool chord = false;
+        for (const uint32_t z : nu) {
+          if (std::binary_search(nw.begin(), nw.end(), z)) ++common;
+          else if (z != w && m.fixed[w] && m.fixed[z]) chord = true;
+        }
+        if (common != 2 || chord) continue;
+        // u's triangles with w for u
+        keep.clear();
+        double newMin = 180;
+        bool ok = true;
+        for (uint32_t k = m.starStart[u]; k < m.starStart[u + 1] && ok; ++k) {
+          const uint32_t t = m.starTri[k];
+          if (t == t0 || t == t1) continue;
+          keep.push_back(t);
+          const uint32_t* tv = &m.tri[3 * size_t(t)];
+          const double* q[3];
+          Vec3 P[3];
+          for (int i = 0; i < 3; ++i) {
+            const uint32_t z = tv[i] == u ? w : tv[i];
+            q[i] = m.p(z);
+            P[i] = m.pos[z];
+          }
+          const double l2 = std::max({sq(q[1][0] - q[0][0]) + sq(q[1][1] - q[0][1]), sq(q[2][0] - q[1][0]) + sq(q[2][1] - q[1][1]),
+                                      sq(q[0][0] - q[2][0]) + sq(q[0][1] - q[2][1])});
+          ok = orient2d(q[0], q[1], q[2]) > 1e-6 * l2;
+          newMin = std::min(newMin, minAngleDeg3Approx(P[0], P[1], P[2]));
+        }
+        if (!ok || !(newMin >= floor)) continue;
+        // commit tentatively, then ask the guard about u's old star region
+        for (const uint32_t t : keep)
+          for (int i = 0; i < 3; ++i)
+            if (m.tri[3 * size_t(t) + i] == u) m.tri[3 * size_t(t) + i] = w;
+        if (m.guard) {
+          double before = 0;
+          for (uint32_t k = m.starStart[u]; k < m.starStart[u + 1]; ++k) before = std::max(before, m.err[m.starTri[k]]);
+          const double allowed = std::max(before, sq(m.guard->tolerance));
+          for (uint32_t k = m.starStart[u]; k < m.starStart[u + 1] && ok; ++k)
+            for (uint32_t g = m.head[m.starTri[k]]; g != kNoTri && ok; g = m.next[g]) {
+              double dist = INFINITY;
+              for (size_t j = 0; j < keep.size() && dist > allowed; ++j) dist = std::min(dist, distance2(m, &m.tri[3 * size_t(keep[j])], m.guard->pos[g]));
+              ok = dist <= allowed;
+            }
+          if (!ok) {
+            // undo: the triangles of u's star that now hold w where u was
+            for (uint32_t k = m.starStart[u]; k < m.starStart[u + 1]; ++k) {
+              const uint32_t t = m.starTri[k];
+              if (t == t0 || t == t1) continue;
+              uint32_t* tv = &m.tri[3 * size_t(t)];
+              // w was not in this triangle before (the link condition: only t0, t1 hold both)
+              for (int i = 0; i < 3; ++i)
+                if (tv[i] == w) tv[i] = u;
+            }
+            continue;
+          }
+        }
+        dead[t0] = dead[t1] = 1;
+        m.deg[w] += m.deg[u] - 4;
+        --m.deg[c0], --m.deg[c1];
+        m.deg[u] = 0;
+        locked[u] = locked[w] = touched[u] = touched[w] = 1;
+        for (const uint32_t z : nu) locked[z] = touched[z] = 1;
+        for (const uint32_t z : nw) locked[z] = touched[z] = 1;
+        ++count;
+        break;
+      }
+    }
+  }
+  if (count == 0) return 0;
+  size_t out = 0;
+  for (size_t t = 0; t < nt; ++t) {
+    if (dead[t]) continue;
+    for (int i = 0; i < 3; ++i) m.tri[3 * out + i] = m.tri[3 * t + i];
+    ++out;
+  }
+  m.tri.resize(3 * out);
+  m.cacheAll();
+  m.buildStars();
+  buildAdjacency(m);
+  if (m.guard) bucketGuard(m);
+  return count;
 }
 
 double meanMin(const Mesh& m) {
@@ -559,7 +702,7 @@ double minAngleDeg3Approx(const Vec3& a, const Vec3& b, const Vec3& c) { return 
 OptimizeStats optimizePatch(std::vector<double>& xy, std::vector<uint32_t>& triangles, std::vector<Vec3>& pos,
                             const std::vector<uint8_t>& fixed, const LiftFn& lift, const OptimizeOptions& o,
                             const std::vector<uint8_t>& active0, const SurfaceSamples& guard, OptimizeCache* cache) {
-  Mesh m{xy, triangles, pos, fixed, {}, {}, {}, {}, nullptr, {}, {}, {}, {}, {}};
+  Mesh m{xy, triangles, pos, fixed, {}, {}, {}, {}, nullptr, {}, {}, {}, {}, {}, {}, {}};
   OptimizeStats st;
   const size_t nt = triangles.size() / 3;
   // the previous call's min angles stand where no vertex moved since (the same positions give
@@ -602,6 +745,22 @@ OptimizeStats optimizePatch(std::vector<double>& xy, std::vector<uint32_t>& tria
   std::vector<uint8_t> active = active0.size() == nv ? active0 : std::vector<uint8_t>(nv, 1), nextActive(nv, 0), changed(nv, 0);
   if (m.starStart.size() != nv + 1) m.buildStars();
   if (!reuse) buildAdjacency(m);
+  if (o.valenceOperations) {
+    m.deg.resize(nv);
+    m.ideal.resize(nv);
+    for (uint32_t v = 0; v < nv; ++v) {
+      m.deg[v] = int(m.starStart[v + 1] - m.starStart[v]);
+      double sum = 0;  // the planar angle sum: 2π inside, the boundary's angle at a curve sample
+      for (uint32_t k = m.starStart[v]; k < m.starStart[v + 1]; ++k) {
+        const uint32_t* t = &triangles[3 * size_t(m.starTri[k])];
+        const int c = cornerOf(t, v);
+        const double *a = m.p(t[c]), *b = m.p(t[kNext[c]]), *d = m.p(t[kPrev[c]]);
+        const double ux = b[0] - a[0], uy = b[1] - a[1], wx = d[0] - a[0], wy = d[1] - a[1];
+        sum += dmath::atan2(std::abs(ux * wy - uy * wx), ux * wx + uy * wy);
+      }
+      m.ideal[v] = fixed[v] ? std::max(1, int(std::lround(sum * kRadToDeg / 60.0))) : 6;
+    }
+  }
   size_t flips = 0;
   for (int it = 0; it < o.maxIterations; ++it) {
     if (flips > 0) m.buildStars();  // moves keep the connectivity; flips change it
@@ -613,6 +772,8 @@ OptimizeStats optimizePatch(std::vector<double>& xy, std::vector<uint32_t>& tria
       for (uint32_t k = m.starStart[v]; k < m.starStart[v + 1]; ++k)
         for (int c = 0; c < 3; ++c) nextActive[m.tri[3 * size_t(m.starTri[k]) + c]] = 1;
     }
+    // collapses with the flips, before them (a collapse leaves stars for the flips to even out)
+    if (!m.deg.empty() && !(it > 0 && it + 1 == o.maxIterations)) st.collapses += collapsePass(m, nextActive, o.minAngleDeg + kApproxErrDeg);
     // flips between passes give the next pass better stars; after the last of several passes a
     // flip pass would only mend what the moves left, for no measurable gain
     flips = 0;

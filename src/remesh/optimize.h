@@ -3,7 +3,8 @@
 // Vertex moves toward the mean of the star's equilateral apexes (each star triangle's ideal
 // place for the vertex: follows a graded mesh), the optimal Delaunay triangulation position
 // (ODT: the area-weighted mean of the circumcenters of the star; Chen–Xu 2004, Alliez et al. 2005
-// "Variational tetrahedral meshing"), and a half step toward the first; and edge flips.
+// "Variational tetrahedral meshing"), and a half step toward the first; and edge flips; with
+// OptimizeOptions::valenceOperations, flips and edge collapses toward regular valences too.
 // Both are done in the conformal plane of the patch, where the planar mesh stays a valid
 // triangulation, and both are accepted only when the lifted 3D triangles get better: the star's
 // smallest 3D angle never drops below the bound (or below its own value when it is already under
@@ -32,11 +33,18 @@ struct OptimizeOptions {
   //! angle is below the bound (a hard cap; they stop when none is left or nothing moves or
   //! flips). 0: none.
   int boundPasses = 0;
+  //! The valence operations: an edge also flips when that brings its four vertices' triangle
+  //! counts nearer their ideal (6 inside, the planar angle sum over 60 degrees at a curve sample)
+  //! with both new triangles at or above the bound, and an edge (u, w) with u free collapses
+  //! into w when that brings the counts nearer (see collapsePass in optimize.cpp). A star's
+  //! smallest angle is bounded by 360° over its vertex's triangle count: the 7-valent vertices
+  //! of a Delaunay refinement hold the mean min angle near 51° whatever the moves do.
+  bool valenceOperations = false;
 };
 
 struct OptimizeStats {
   int iterations = 0;
-  size_t moves = 0, flips = 0;
+  size_t moves = 0, flips = 0, collapses = 0;
   double meanMinAngleBefore = 0, meanMinAngleAfter = 0;  //!< degrees, 3D (minAngleDeg3Approx)
 };
 

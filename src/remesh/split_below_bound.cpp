@@ -113,6 +113,7 @@ SplitStats splitBelowBound(std::vector<double>& xy, std::vector<uint32_t>& trian
           ++st.splits;
           st.optimize.moves += os.moves;
           st.optimize.flips += os.flips;
+          st.optimize.collapses += os.collapses;
           again = true;
           break;
         }

@@ -84,6 +84,7 @@ export const QUALITY: readonly QualityEntry[] = [
   { key: 'optimizeMoves', label: 'vertex moves by the optimization', unit: 'count', group: 'pipeline' },
   { key: 'optimizeFlips', label: 'edge flips by the optimization', unit: 'count', group: 'pipeline' },
   { key: 'optimizeSplits', label: 'vertices added by the optimization', unit: 'count', group: 'pipeline' },
+  { key: 'optimizeCollapses', label: 'edges collapsed by the optimization', unit: 'count', group: 'pipeline' },
   { key: 'repairMoves', label: 'vertices moved to repair an angle', unit: 'count', group: 'pipeline' },
   ...REMESH_STAGES.map((s): QualityEntry => ({ key: `seconds.${s.key}`, label: `time: ${s.label}`, unit: 's', group: 'pipeline' })),
   { key: 'seconds.total', label: 'time: total in the library', unit: 's', group: 'pipeline' },

@@ -77,6 +77,7 @@ void checkSameOutputForEveryThreadCount(const MeshBuffers& in, RemeshOptions o) 
     CHECK(x.optimizeMoves == y.optimizeMoves);
     CHECK(x.optimizeFlips == y.optimizeFlips);
     CHECK(x.optimizeSplits == y.optimizeSplits);
+    CHECK(x.optimizeCollapses == y.optimizeCollapses);
     CHECK(x.repairMoves == y.repairMoves);
     CHECK(std::memcmp(&x.hausdorffRel, &y.hausdorffRel, sizeof(double)) == 0);
     CHECK(std::memcmp(&x.maxDistanceToInputRel, &y.maxDistanceToInputRel, sizeof(double)) == 0);

@@ -6,6 +6,7 @@
 #include <set>
 
 #include "remesh/planar_checks.h"
+#include "planar/refine.h"
 #include "remesh/optimize.h"
 
 using namespace conformesh;
@@ -398,4 +399,94 @@ TEST_CASE("optimize: no flip joins two boundary vertices (a chord the patch acro
     const bool hasC1 = tri[t] == c1 || tri[t + 1] == c1 || tri[t + 2] == c1;
     CHECK_FALSE((hasC0 && hasC1));
   }
+}
+
+TEST_CASE("optimize: the valence operations bring a refinement's valences nearer 6, keeping the bound, boundary, domain and guard") {
+  // a graded Delaunay refinement of the unit square (its interior valences about half six, as
+  // the patches' are), lifted to a paraboloid
+  auto surface = [](double x, double y) { return Vec3{x, y, 0.6 * (x * x + y * y)}; };
+  planar::Pslg pslg;
+  const int n = 12;
+  for (int k = 0; k < 4 * n; ++k) {
+    const int side = k / n, i = k % n;
+    const double s = double(i) / n;
+    const double p[4][2] = {{s, 0}, {1, s}, {1 - s, 1}, {0, 1 - s}};
+    pslg.points.insert(pslg.points.end(), {p[side][0], p[side][1]});
+    pslg.segments.insert(pslg.segments.end(), {uint32_t(k), uint32_t((k + 1) % (4 * n))});
+  }
+  planar::RefineOptions ro;
+  ro.minAngleDeg = 30;
+  ro.sizing = [](double x, double) { return 0.03 + 0.1 * x; };
+  const planar::RefineResult rr = planar::refinePslg(pslg, ro);
+  REQUIRE(rr.status.ok());
+  const size_t nv = rr.mesh.vertexCount();
+  std::vector<uint8_t> fixed(nv);
+  std::vector<Vec3> pos0(nv);
+  for (size_t v = 0; v < nv; ++v) {
+    fixed[v] = v < pslg.points.size() / 2 || rr.mesh.vertexSegment[v] >= 0;
+    pos0[v] = surface(rr.mesh.points[2 * v], rr.mesh.points[2 * v + 1]);
+  }
+  auto lift = [&](uint32_t, double x, double y, Vec3& out) {
+    if (x < 0 || y < 0 || x > 1 || y > 1) return false;
+    out = surface(x, y);
+    return true;
+  };
+  optimization::SurfaceSamples guard = latticeGuard(surface, 30);
+  const double guardBefore = guardDistance(rr.mesh.points, rr.mesh.triangles, pos0, guard);
+  guard.tolerance = 2 * guardBefore;
+  double worstBefore = 180;
+  for (size_t t = 0; t < rr.mesh.triangleCount(); ++t) worstBefore = std::min(worstBefore, minAngleOf(rr.mesh.triangles, pos0, t));
+  const auto boundary0 = boundaryEdges(rr.mesh.triangles);
+  struct Outcome {
+    double deviation = 0, meanMin = 0;
+  };
+  auto run = [&](bool valence, Outcome& out) {
+    std::vector<double> xy = rr.mesh.points;
+    std::vector<uint32_t> tri = rr.mesh.triangles;
+    std::vector<Vec3> pos = pos0;
+    optimization::OptimizeOptions o;
+    o.minAngleDeg = 25;
+    o.maxIterations = 3;
+    o.valenceOperations = valence;
+    const optimization::OptimizeStats st = optimization::optimizePatch(xy, tri, pos, fixed, lift, o, {}, guard);
+    std::vector<int> count(nv, 0);
+    for (const uint32_t v : tri) ++count[v];
+    size_t emptied = 0;
+    double area = 0, worst = 180, sum = 0;
+    for (size_t v = 0; v < nv; ++v) {
+      if (fixed[v]) {
+        CHECK(count[v] > 0);
+        CHECK(xy[2 * v] == rr.mesh.points[2 * v]);
+        CHECK(xy[2 * v + 1] == rr.mesh.points[2 * v + 1]);
+      } else if (count[v] == 0) {
+        ++emptied;
+      } else {
+        out.deviation += (count[v] - 6) * (count[v] - 6);
+      }
+    }
+    for (size_t t = 0; t < tri.size() / 3; ++t) {
+      const double* a = &xy[2 * tri[3 * t]];
+      const double* b = &xy[2 * tri[3 * t + 1]];
+      const double* c = &xy[2 * tri[3 * t + 2]];
+      const double a2 = (b[0] - a[0]) * (c[1] - a[1]) - (b[1] - a[1]) * (c[0] - a[0]);
+      CHECK(a2 > 0);
+      area += 0.5 * a2;
+      worst = std::min(worst, minAngleOf(tri, pos, t));
+      sum += minAngleOf(tri, pos, t);
+    }
+    out.meanMin = sum / double(tri.size() / 3);
+    CHECK(emptied == st.collapses);                 // every collapse empties one free vertex, nothing else
+    CHECK(area == doctest::Approx(1.0).epsilon(1e-12));  // the same domain, tiled
+    CHECK(boundaryEdges(tri) == boundary0);
+    CHECK(worst >= std::min(worstBefore, o.minAngleDeg));
+    CHECK(guardDistance(xy, tri, pos, guard) <= guard.tolerance * 1.001);
+    if (valence) CHECK(st.collapses > 0);
+    MESSAGE("valence operations " << valence << ": deviation " << out.deviation << ", mean min angle " << out.meanMin << ", "
+                                  << st.collapses << " collapses, " << st.flips << " flips");
+  };
+  Outcome plain, valence;
+  run(false, plain);
+  run(true, valence);
+  CHECK(valence.deviation < 0.8 * plain.deviation);
+  CHECK(valence.meanMin > plain.meanMin);
 }
