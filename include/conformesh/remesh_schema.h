@@ -93,7 +93,7 @@ inline bool parseBoundary(const std::string& s, Boundary& b) {
     "cap on the rounds of the 3D angle certificate (patches re-meshed finer where a triangle is below the bound)")      \
   X(bool, optimize, true, 0, 1, "--no-optimize", "", "skip the optimization (vertex moves and flips judged in 3D)")     \
   X(int, optimizeIterations, 2, 0, 1000, "--optimize-iterations", "N",                                                  \
-    "passes of the optimization (a cap; one more above a 30 degree bound), an integer >= 0")                                                              \
+    "passes of the optimization (a cap; one more above a 30 degree bound), an integer >= 0")                            \
   X(double, optimizeTolerance, 1e-3, 0, 1e308, "--optimize-tolerance", "T",                                             \
     "stop optimizing when a pass gains less than this fraction of the mean min angle")                                  \
   X(bool, patches, false, 0, 1, "", "", "return every patch in the plane and the patch of every output triangle")       \
@@ -161,7 +161,7 @@ inline bool parseBoundary(const std::string& s, Boundary& b) {
   X(std::vector<int>, flowIterations, {}) X(size_t, patchSplitsForScale, 0) X(size_t, sinkCuts, 0)                       \
   X(int, conformingRounds, 0) X(int, certificateRounds, 0)                                                              \
   X(size_t, optimizeMoves, 0) X(size_t, optimizeFlips, 0) X(size_t, optimizeSplits, 0)                                  \
-  X(size_t, optimizeCollapses, 0)                                                                                      \
+  X(size_t, optimizeCollapses, 0)                                                                                       \
   X(size_t, repairMoves, 0)                                                                                             \
   X(double, estimatedTriangles, 0) X(bool, topologyPreserved, false)                                                    \
   X(StageSeconds, seconds, {}) X(std::vector<std::string>, warnings, {})

@@ -37,7 +37,7 @@ constexpr double kOffcenterApexDeg = 45.0;
 // The same above kPlanarMaxDeg (a 3D bound of 35°): nearer equilateral there, where the
 // optimization must lift every free triangle above the bound and its moves and valence
 // operations start from the refinement's shapes (mean min angle at 35° on the 19 models of
-// ../shared/data 51.3-53.5° with it, 50.4-51.7° at 45° without the valence operations;
+// ../shared/data 51.5-53.5° with both, 50.4-51.7° at 45° without the valence operations;
 // docs/decisions/0035).
 constexpr double kOffcenterApexHighDeg = 50.0;
 // Shortest boundary piece a patch refinement may split, in Surface::splitFloorLength (the
