@@ -568,9 +568,9 @@ size_t flipPass(Mesh& m, std::vector<uint8_t>& touched, const std::vector<uint8_
 // guard keeps the change, the link condition holds (u and w share exactly the two opposite
 // vertices) and no new edge joins two fixed vertices. The collapses of one pass touch disjoint
 // stars; the triangles are compacted after it and each u is left without triangles (the caller
-// drops such vertices). Returns the number of collapses; `touched` gets the changed stars'
-// vertices.
-size_t collapsePass(Mesh& m, std::vector<uint8_t>& touched, double floor) {
+// drops such vertices). Only edges with an end in `region` are tried (as flipPass's). Returns
+// the number of collapses; `touched` gets the changed stars' vertices.
+size_t collapsePass(Mesh& m, std::vector<uint8_t>& touched, const std::vector<uint8_t>& region, double floor) {
   const size_t nt = m.tri.size() / 3, nv = m.xy.size() / 2;
   std::vector<uint8_t> locked(nv, 0), dead(nt, 0);
   std::vector<uint32_t> nu, nw, keep;
@@ -590,7 +590,7 @@ size_t collapsePass(Mesh& m, std::vector<uint8_t>& touched, double floor) {
       if (t1 == kNoTri || t1 < t0 || dead[t1]) continue;
       const uint32_t* v0 = &m.tri[3 * size_t(t0)];
       const uint32_t x = v0[c], y = v0[kNext[c]], c0 = v0[kPrev[c]];
-      if (locked[x] || locked[y]) continue;
+      if (locked[x] || locked[y] || !(region[x] || region[y])) continue;
       const uint32_t* v1 = &m.tri[3 * size_t(t1)];
       const int d = cornerOf(v1, y);
       if (v1[kNext[d]] != x) continue;
@@ -750,7 +750,9 @@ OptimizeStats optimizePatch(std::vector<double>& xy, std::vector<uint32_t>& tria
     m.ideal.resize(nv);
     for (uint32_t v = 0; v < nv; ++v) {
       m.deg[v] = int(m.starStart[v + 1] - m.starStart[v]);
-      double sum = 0;  // the planar angle sum: 2π inside, the boundary's angle at a curve sample
+      m.ideal[v] = 6;
+      if (!fixed[v]) continue;
+      double sum = 0;  // the planar angle sum: the boundary's angle at a curve sample
       for (uint32_t k = m.starStart[v]; k < m.starStart[v + 1]; ++k) {
         const uint32_t* t = &triangles[3 * size_t(m.starTri[k])];
         const int c = cornerOf(t, v);
@@ -758,7 +760,7 @@ OptimizeStats optimizePatch(std::vector<double>& xy, std::vector<uint32_t>& tria
         const double ux = b[0] - a[0], uy = b[1] - a[1], wx = d[0] - a[0], wy = d[1] - a[1];
         sum += dmath::atan2(std::abs(ux * wy - uy * wx), ux * wx + uy * wy);
       }
-      m.ideal[v] = fixed[v] ? std::max(1, int(std::lround(sum * kRadToDeg / 60.0))) : 6;
+      m.ideal[v] = std::max(1, int(std::lround(sum * kRadToDeg / 60.0)));
     }
   }
   size_t flips = 0;
@@ -772,8 +774,12 @@ OptimizeStats optimizePatch(std::vector<double>& xy, std::vector<uint32_t>& tria
       for (uint32_t k = m.starStart[v]; k < m.starStart[v + 1]; ++k)
         for (int c = 0; c < 3; ++c) nextActive[m.tri[3 * size_t(m.starTri[k]) + c]] = 1;
     }
-    // collapses with the flips, before them (a collapse leaves stars for the flips to even out)
-    if (!m.deg.empty() && !(it > 0 && it + 1 == o.maxIterations)) st.collapses += collapsePass(m, nextActive, o.minAngleDeg + kApproxErrDeg);
+    // collapses with the flips, before them (a collapse leaves stars for the flips to even out),
+    // over the same region
+    if (!m.deg.empty() && !(it > 0 && it + 1 == o.maxIterations)) {
+      for (size_t v = 0; v < nv; ++v) changed[v] = active[v] | nextActive[v];
+      st.collapses += collapsePass(m, nextActive, changed, o.minAngleDeg + kApproxErrDeg);
+    }
     // flips between passes give the next pass better stars; after the last of several passes a
     // flip pass would only mend what the moves left, for no measurable gain
     flips = 0;
