@@ -230,23 +230,26 @@ void rebucketGuard(Mesh& m, const std::vector<uint32_t>& changed) {
   bucketGuard(m, changed, pts);
 }
 
-// Would the guard keep the change that made triangles ts[0..n) (a star, or the two triangles
-// of a flip: the same region before and after)? `moved`: how far the change moved the 3D
-// surface at most (a bound on the change of every point's distance; infinity when unknown).
-bool guardAccepts(const Mesh& m, const uint32_t* ts, size_t n, double moved = INFINITY) {
+// Would the guard keep the change that turned the region of triangles from[0..nFrom) (whose
+// lists hold the points) into to[0..nTo)? The same slots for a move or a flip; a collapse leaves
+// two fewer. `moved`: how far the change moved the 3D surface at most (a bound on the change of
+// every point's distance; infinity when unknown).
+bool guardAccepts(const Mesh& m, const uint32_t* from, size_t nFrom, const uint32_t* to, size_t nTo, double moved = INFINITY) {
   if (!m.guard) return true;
   double before = 0;
-  for (size_t i = 0; i < n; ++i) before = std::max(before, m.err[ts[i]]);
+  for (size_t i = 0; i < nFrom; ++i) before = std::max(before, m.err[from[i]]);
   const double allowed = std::max(before, sq(m.guard->tolerance));
   if (std::sqrt(before) + moved <= m.guard->tolerance) return true;  // no point can get past it
-  for (size_t i = 0; i < n; ++i)
-    for (uint32_t k = m.head[ts[i]]; k != kNoTri; k = m.next[k]) {
+  for (size_t i = 0; i < nFrom; ++i)
+    for (uint32_t k = m.head[from[i]]; k != kNoTri; k = m.next[k]) {
       double d = INFINITY;
-      for (size_t j = 0; j < n && d > allowed; ++j) d = std::min(d, distance2(m, &m.tri[3 * size_t(ts[j])], m.guard->pos[k]));
+      for (size_t j = 0; j < nTo && d > allowed; ++j) d = std::min(d, distance2(m, &m.tri[3 * size_t(to[j])], m.guard->pos[k]));
       if (d > allowed) return false;
     }
   return true;
 }
+// A star, or the two triangles of a flip: the same slots before and after.
+bool guardAccepts(const Mesh& m, const uint32_t* ts, size_t n, double moved = INFINITY) { return guardAccepts(m, ts, n, ts, n, moved); }
 
 // After a kept change: the guard points of ts[0..n) go to their new triangles.
 void rebucket(Mesh& m, const uint32_t* ts, size_t n) {
@@ -267,6 +270,13 @@ void rebucket(Mesh& m, const uint32_t* ts, size_t n) {
       m.err[t] = std::max(m.err[t], distance2(m, &m.tri[3 * size_t(t)], m.guard->pos[k]));
       break;
     }
+}
+
+// Triangle (a, b, c) strictly positive in the plane, relative to its size: neither inverted nor
+// a sliver.
+bool positiveInPlane(const double* a, const double* b, const double* c) {
+  const double l2 = std::max({sq(b[0] - a[0]) + sq(b[1] - a[1]), sq(c[0] - b[0]) + sq(c[1] - b[1]), sq(a[0] - c[0]) + sq(a[1] - c[1])});
+  return orient2d(a, b, c) > 1e-6 * l2;
 }
 
 // Try moving v to (x, y): accepted when no star triangle inverts in the plane and the star's 3D
@@ -319,10 +329,7 @@ bool tryMove(Mesh& m, uint32_t v, double x, double y, const LiftFn& lift, double
     const uint32_t* t = &m.tri[3 * size_t(s[i])];
     const double* c[3];
     for (int k = 0; k < 3; ++k) c[k] = t[k] == v ? q : m.p(t[k]);
-    const double l2 = std::max({sq(c[1][0] - c[0][0]) + sq(c[1][1] - c[0][1]),
-                                sq(c[2][0] - c[1][0]) + sq(c[2][1] - c[1][1]),
-                                sq(c[0][0] - c[2][0]) + sq(c[0][1] - c[2][1])});
-    kept = orient2d(c[0], c[1], c[2]) > 1e-6 * l2;
+    kept = positiveInPlane(c[0], c[1], c[2]);
   }
   if (kept && floor == bound && newMin < bound + kApproxErrDeg)  // the bound at stake: exactly
     for (size_t i = 0; i < n && kept; ++i)
@@ -625,9 +632,7 @@ size_t collapsePass(Mesh& m, std::vector<uint8_t>& touched, const std::vector<ui
             q[i] = m.p(z);
             P[i] = m.pos[z];
           }
-          const double l2 = std::max({sq(q[1][0] - q[0][0]) + sq(q[1][1] - q[0][1]), sq(q[2][0] - q[1][0]) + sq(q[2][1] - q[1][1]),
-                                      sq(q[0][0] - q[2][0]) + sq(q[0][1] - q[2][1])});
-          ok = orient2d(q[0], q[1], q[2]) > 1e-6 * l2;
+          ok = positiveInPlane(q[0], q[1], q[2]);
           newMin = std::min(newMin, minAngleDeg3Approx(P[0], P[1], P[2]));
         }
         if (!ok || !(newMin >= floor)) continue;
@@ -635,28 +640,12 @@ size_t collapsePass(Mesh& m, std::vector<uint8_t>& touched, const std::vector<ui
         for (const uint32_t t : keep)
           for (int i = 0; i < 3; ++i)
             if (m.tri[3 * size_t(t) + i] == u) m.tri[3 * size_t(t) + i] = w;
-        if (m.guard) {
-          double before = 0;
-          for (uint32_t k = m.starStart[u]; k < m.starStart[u + 1]; ++k) before = std::max(before, m.err[m.starTri[k]]);
-          const double allowed = std::max(before, sq(m.guard->tolerance));
-          for (uint32_t k = m.starStart[u]; k < m.starStart[u + 1] && ok; ++k)
-            for (uint32_t g = m.head[m.starTri[k]]; g != kNoTri && ok; g = m.next[g]) {
-              double dist = INFINITY;
-              for (size_t j = 0; j < keep.size() && dist > allowed; ++j) dist = std::min(dist, distance2(m, &m.tri[3 * size_t(keep[j])], m.guard->pos[g]));
-              ok = dist <= allowed;
-            }
-          if (!ok) {
-            // undo: the triangles of u's star that now hold w where u was
-            for (uint32_t k = m.starStart[u]; k < m.starStart[u + 1]; ++k) {
-              const uint32_t t = m.starTri[k];
-              if (t == t0 || t == t1) continue;
-              uint32_t* tv = &m.tri[3 * size_t(t)];
-              // w was not in this triangle before (the link condition: only t0, t1 hold both)
-              for (int i = 0; i < 3; ++i)
-                if (tv[i] == w) tv[i] = u;
-            }
-            continue;
-          }
+        if (!guardAccepts(m, &m.starTri[m.starStart[u]], m.starStart[u + 1] - m.starStart[u], keep.data(), keep.size())) {
+          // undo: w was in none of them before (the link condition: only t0, t1 hold both)
+          for (const uint32_t t : keep)
+            for (int i = 0; i < 3; ++i)
+              if (m.tri[3 * size_t(t) + i] == w) m.tri[3 * size_t(t) + i] = u;
+          continue;
         }
         dead[t0] = dead[t1] = 1;
         m.deg[w] += m.deg[u] - 4;
