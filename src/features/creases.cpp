@@ -58,9 +58,11 @@ bool isLine(double length, uint32_t edges, const CreaseOptions& o) {
 }
 
 // The outlier faces' candidate pairs (creases.h) made no candidates: those meeting below
-// tipLimit whose faces across bend by at most limit, neither edge in keep; and the candidate
-// edge of a flap whose corners on it are below tipLimit, unless it is in keep. Decided from the
-// candidates as given, so the result does not depend on the face order.
+// tipLimit whose faces across bend by at most limit, neither edge in keep; of a cap's pair
+// whose faces across bend more (or with an edge in keep), the long edge, or the short one
+// where the long one is in keep; and the candidate edge of a flap whose corners on it are below
+// tipLimit, unless it is in keep. Decided from the candidates as given, so the result does not
+// depend on the face order.
 void dropOutlierFaces(const EdgeGraph& g, double limit, double tipLimit, const std::vector<uint8_t>& keep, Creases& out) {
   std::vector<uint32_t> drop;
   for (uint32_t f = 0; f < g.faceCount; ++f) {
@@ -72,15 +74,28 @@ void dropOutlierFaces(const EdgeGraph& g, double limit, double tipLimit, const s
     }
     for (int i = 0; i < 3; ++i)
       for (int j = i + 1; j < 3; ++j) {
-        if (!out.edge[fe[i]] || !out.edge[fe[j]] || keep[fe[i]] || keep[fe[j]]) continue;
-        if (g.cornerAngle(f, (3 - i - j + 2) % 3) >= tipLimit) continue;  // the corner opposite the third edge
+        if (!out.edge[fe[i]] || !out.edge[fe[j]]) continue;
+        const int tip = (3 - i - j + 2) % 3;  // the corner the two edges share
+        if (g.cornerAngle(f, tip) >= tipLimit) continue;
         const uint32_t gi = g.edgeFaces[fe[i]][0] == f ? g.edgeFaces[fe[i]][1] : g.edgeFaces[fe[i]][0];
         const uint32_t gj = g.edgeFaces[fe[j]][0] == f ? g.edgeFaces[fe[j]][1] : g.edgeFaces[fe[j]][0];
         if (gi == kNone || gj == kNone || gi == gj) continue;
         const Vec3 ni = g.faceNormal(gi), nj = g.faceNormal(gj);
-        if (norm(ni) == 0 || norm(nj) == 0 || angleBetween(ni, nj) > limit) continue;
-        drop.push_back(fe[i]);
-        drop.push_back(fe[j]);
+        if (norm(ni) == 0 || norm(nj) == 0) continue;
+        if (!keep[fe[i]] && !keep[fe[j]] && angleBetween(ni, nj) <= limit) {
+          drop.push_back(fe[i]);
+          drop.push_back(fe[j]);
+          continue;
+        }
+        // a cap: the long edge's far end is below tipLimit too, so the third corner is obtuse
+        // and lies near the long edge, and the crease passing the sliver on both sides of it
+        // is one crease: drop the long side, or the short one where the long edge is on a line
+        const int longEdge = g.cornerAngle(f, i == tip ? (i + 1) % 3 : i) < tipLimit ? i
+                             : g.cornerAngle(f, j == tip ? (j + 1) % 3 : j) < tipLimit ? j : -1;
+        if (longEdge < 0) continue;
+        const uint32_t longSide = fe[longEdge], shortSide = fe[longEdge == i ? j : i];
+        if (!keep[longSide]) drop.push_back(longSide);
+        else if (!keep[shortSide]) drop.push_back(shortSide);
       }
   }
   for (uint32_t e : drop)

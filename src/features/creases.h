@@ -12,7 +12,10 @@
 //     those two neighbours, so its own normal is the artifact (a needle whose normal its
 //     vertices' noise swings, or a face folded over), and the two edges are no candidates,
 //     unless one of them is on a line (below): a CAD face between two of its lines is real;
-//     likewise a flap: a face hanging on the boundary by one candidate edge (its other two
+//     where the faces across do bend and the face is a cap (its other corner on the long edge
+//     also below outlierTipDeg, so its third corner is obtuse and near that edge), one crease
+//     passes the sliver on both sides: the long edge is no candidate, or the short one where
+//     the long edge is on a line; likewise a flap: a face hanging on the boundary by one candidate edge (its other two
 //     edges on the boundary) with both corners there below outlierTipDeg, a sliver whose
 //     normal is noise and whose crease would only wall it off behind two exempt corners;
 //   * contrast: an edge's dihedral against the median dihedral of the edges around its two ends

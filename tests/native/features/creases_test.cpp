@@ -87,6 +87,52 @@ TEST_CASE("creases: a needle face tilted out of a flat sheet makes no crease; wi
   CHECK(detectCreases(g, o).creaseEdges >= 2);
 }
 
+TEST_CASE("creases: a cap sliver on a fold leaves one crease past it, not one on each side") {
+  // the fold of foldedSheet, and its fold edge (a, b) with the face on the left split at p, just
+  // beside the middle of ab and lifted: the cap (a, b, p) has corners of about 20° at a and b, its
+  // three edges are sharp, and both (a, b) and (a, p, b) would be creases meeting at a and b
+  // below the bound: two exempt corners the surface does not have. The fold is a line at
+  // minLength 0.25 (four times that is its length): it keeps (a, b); at 0.3 it is not, and
+  // goes on through p.
+  for (double minLength : {0.25, 0.3}) {
+    MeshBuffers m = foldedSheet(16, 70.0, 0.0);
+    size_t t = 0;
+    int ia = -1;
+    for (; t < m.triangles.size() && ia < 0; t += 3)
+      for (int i = 0; i < 3 && ia < 0; ++i) {
+        const double* pa = &m.positions[3 * m.triangles[t + i]];
+        const double* pb = &m.positions[3 * m.triangles[t + (i + 1) % 3]];
+        const double* pc = &m.positions[3 * m.triangles[t + (i + 2) % 3]];
+        if (pa[0] == 0.5 && pb[0] == 0.5 && pc[0] < 0.5 && std::min(pa[1], pb[1]) > 0.4 && std::min(pa[1], pb[1]) < 0.6) ia = i;
+      }
+    REQUIRE(ia >= 0);
+    t -= 3;
+    const uint32_t a = m.triangles[t + ia], b = m.triangles[t + (ia + 1) % 3], c = m.triangles[t + (ia + 2) % 3];
+    const double p[3] = {0.5 - 0.004, 0.5 * (m.positions[3 * a + 1] + m.positions[3 * b + 1]), 0.01};
+    const uint32_t pi = uint32_t(m.vertexCount());
+    m.positions.insert(m.positions.end(), p, p + 3);
+    m.triangles[t + (ia + 2) % 3] = pi;
+    m.triangles.insert(m.triangles.end(), {b, c, pi, c, a, pi});
+    const EdgeGraph g = buildEdgeGraph(m);
+    const uint32_t ab = g.findEdge(a, b), ap = g.findEdge(a, pi), bp = g.findEdge(b, pi);
+    const Creases sharp = detectCreases(g, CreaseOptions{});  // every candidate
+    REQUIRE((sharp.edge[ab] && sharp.edge[ap] && sharp.edge[bp]));
+    CreaseOptions o;
+    o.minLength = minLength;
+    const Creases c0 = detectCreases(g, o);
+    INFO("minLength " << minLength);
+    const bool line = minLength < 0.26;
+    CHECK(c0.edge[ab] == (line ? 1 : 0));
+    CHECK(c0.edge[ap] == (line ? 0 : 1));
+    CHECK(c0.edge[bp] == c0.edge[ap]);
+    CHECK(creasesOnFold(g, c0) == 15 + c0.edge[ab]);  // the rest of the fold is kept
+    CHECK(c0.creaseEdges == 16 + c0.edge[ap]);
+    o.outlierTipDeg = 0;  // without the outlier tests both sides are kept
+    const Creases c1 = detectCreases(g, o);
+    CHECK(c1.edge[ab] + c1.edge[ap] + c1.edge[bp] == 3);
+  }
+}
+
 TEST_CASE("creases: a sliver flap bent off the boundary makes no crease; a real tab does") {
   // a flat grid and one more face on a boundary edge (a, b), bent down by about 50°: a sliver
   // (corners of 14° at a and b) or a tab (corners of 68°)
