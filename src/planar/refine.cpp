@@ -177,7 +177,11 @@ class Refiner {
     }
     const int32_t sg = s_.vseg[v];
     if (sg < 0) return false;
-    const uint32_t a = s_.segA[size_t(sg)], b = s_.segB[size_t(sg)];
+    return segmentTag(s_.segA[size_t(sg)], s_.segB[size_t(sg)], apex, chain);
+  }
+
+  // The apex and chain of the input segment ab (RefineOptions::apexOf), if it has them.
+  bool segmentTag(uint32_t a, uint32_t b, uint32_t& apex, uint32_t& chain) const {
     if (o_.apexOf[a] == b || (o_.apexOf[a] != kNoApex && o_.apexOf[a] == o_.apexOf[b] && o_.chainOf[a] == o_.chainOf[b])) {
       apex = o_.apexOf[a], chain = o_.chainOf[a];
       return true;
@@ -187,6 +191,18 @@ class Refiner {
       return true;
     }
     return false;
+  }
+
+  // Vertex v lies on another chain of the apex of subsegment ab's chain (RefineOptions::apexOf):
+  // ab is not split for it. The triangles between the two chains are across the wedge, which no
+  // refinement improves (Shewchuk 2002, small input angles); splitting ab for the other side
+  // would only make them smaller and more, down the wedge to the apex.
+  bool onOtherChain(uint32_t v, uint32_t a, uint32_t b) const {
+    if (o_.apexOf.empty()) return false;
+    uint32_t av, cv, as, cs;
+    if (!chainTag(v, av, cv)) return false;
+    const bool tagged = a >= s_.nInput ? chainTag(a, as, cs) : b >= s_.nInput ? chainTag(b, as, cs) : segmentTag(a, b, as, cs);
+    return tagged && av == as && cv != cs;
   }
 
   // Edge pq spans the wedge of an apex (RefineOptions::apexOf).
@@ -369,7 +385,7 @@ class Refiner {
       const double* p = T_.pt(Tt.v[i]);
       const double* a = T_.pt(Tt.v[nxt(i)]);
       const double* b = T_.pt(Tt.v[prv(i)]);
-      if (encroaches(p, a, b))
+      if (encroaches(p, a, b) && !onOtherChain(Tt.v[i], Tt.v[nxt(i)], Tt.v[prv(i)]))
         enc_.emplace_back(Tt.v[nxt(i)], Tt.v[prv(i)]);
     }
   }

@@ -64,7 +64,9 @@ struct RefineOptions {
   //! that is its corner (apex) and the id of the chain it lies on; empty, or kNoApex where none. A
   //! triangle whose shortest edge joins points of two different chains of one apex, at distances
   //! from it within a factor 2 of each other, and seen from it under less than θ, is exempt: the
-  //! wedge forces its angle (the concentric shells' rule for sides that are chains).
+  //! wedge forces its angle (the concentric shells' rule for sides that are chains). A vertex
+  //! on one chain does not encroach upon the subsegments of another chain of its apex: splitting
+  //! them would only fill the wedge with more and smaller such triangles.
   std::vector<uint32_t> apexOf, chainOf;
   //! Hard cap on Steiner vertices; hitting it stops with status IterationLimit (mesh kept).
   size_t maxInsertions = 100000000;

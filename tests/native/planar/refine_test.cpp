@@ -256,6 +256,44 @@ TEST_CASE("random star polygons with sharp spikes, holes and interior segments")
   }
 }
 
+TEST_CASE("apexOf: a chain is not split for the points of the other chain of its apex, so a narrower wedge needs no more triangles") {
+  // A wedge of angle w with one side sampled at 1/4, 1/2, 1, the other at 0.35, 0.7, 1 (the
+  // samples of the two patches' curves do not face each other), closed by the chord between the
+  // far ends. Plain Ruppert splits each side where the other side encroaches upon it, down to
+  // pieces about as long as the wedge is wide there: a count that grows like 1 / w. With the
+  // sides as chains of the apex the triangles across the wedge are left, whatever w.
+  const double d2r = 3.14159265358979323846 / 180;
+  const auto wedge = [&](double w, bool chains) {
+    const std::vector<double> dist[2] = {{0.25, 0.5, 1.0}, {0.35, 0.7, 1.0}};
+    Pslg in;
+    in.points = {0, 0};
+    for (int k = 0; k < 2; ++k)
+      for (double d : dist[k]) in.points.insert(in.points.end(), {d * std::cos(k * w * d2r), d * std::sin(k * w * d2r)});
+    in.segments = {0, 1, 1, 2, 2, 3, 3, 6, 6, 5, 5, 4, 4, 0};
+    RefineOptions o;
+    o.minAngleDeg = 30;
+    o.minSegmentLength = 1e-9;
+    if (chains) {
+      o.apexOf = {kNoApex, 0, 0, 0, 0, 0, 0};
+      o.chainOf = {kNoApex, 0, 0, 0, 1, 1, 1};
+    }
+    const RefineResult r = refinePslg(in, o);
+    REQUIRE(r.status.ok());
+    CHECK((r.minAngleDeg >= 30 || r.exemptTriangles == r.mesh.triangleCount()));  // 0 when every one is exempt
+    const MeshCheck c = checkMesh(r.mesh, in, true);
+    CHECK(c.inverted == 0);
+    CHECK(c.segmentsBroken == 0);
+    CHECK(c.belowAngle(r.mesh, 30) <= r.exemptTriangles);
+    return r.mesh.triangleCount();
+  };
+  const size_t plain2 = wedge(2, false), plainHalf = wedge(0.5, false);
+  const size_t chained2 = wedge(2, true), chainedHalf = wedge(0.5, true);
+  MESSAGE("triangles at 2 and 0.5 degrees: plain " << plain2 << ", " << plainHalf << "; chains " << chained2 << ", " << chainedHalf);
+  CHECK(plainHalf > 2 * plain2);
+  CHECK(2 * chainedHalf < 3 * chained2);
+  CHECK(2 * chainedHalf < plainHalf);
+}
+
 TEST_CASE("apexOf: the triangles across a small corner whose sides are chains of segments are left as it forces them, round after round") {
   // A 10-degree wedge whose sides are chains of points (a patch's curve samples). As in the
   // remesh's conforming rounds, each round meshes from scratch with the previous round's boundary
