@@ -56,9 +56,15 @@ struct CreaseOptions {
   double lineLengthFactor = 4.0;
   uint32_t lineEdges = 5;
   //! Outlier faces (below) are looked for where their two candidates meet below this (degrees):
-  //! the angle bound of the output, under which the wedge would be an exempt corner.
+  //! the segmentation passes min(the output's angle bound, kSliverTipDeg): below the bound the
+  //! wedge would be an exempt corner, and a face with a wider tip is no sliver.
   double outlierTipDeg = 30.0;
 };
+
+//! A face whose tips are all at least this wide (degrees) is no sliver: its normal is its
+//! surface's, and the creases along it are the surface's own (the outlier tests do not look at
+//! it whatever the angle bound).
+constexpr double kSliverTipDeg = 30.0;
 
 struct Creases {
   std::vector<uint8_t> edge;  //!< per edge: 1 for a crease

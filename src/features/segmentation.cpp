@@ -562,7 +562,7 @@ Segmentation segment(const EdgeGraph& g, const FeatureOptions& options, const Pr
     CreaseOptions co;
     co.featureAngleDeg = options.featureAngleDeg;
     co.minLength = options.minFeatureLength;
-    co.outlierTipDeg = options.angleBoundDeg;
+    co.outlierTipDeg = std::min(options.angleBoundDeg, kSliverTipDeg);
     const Creases creases = detectCreases(g, co);
     for (uint32_t e = 0; e < g.edgeCount(); ++e) {
       if (g.isBoundary(e)) seg.edgeKind[e] = EdgeKind::Boundary;

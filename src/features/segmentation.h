@@ -27,8 +27,9 @@ struct FeatureOptions {
   //! coarse or noisy tessellation are not creases. 0 keeps every sharp edge. User feature edges
   //! are never dropped.
   double minFeatureLength = 0.0;
-  //! The output's angle bound (degrees): two sharp edges of one face meeting below it are no
-  //! crease when the face is an outlier (features/creases.h), lest noise make exempt corners.
+  //! The output's angle bound (degrees): two sharp edges of one face meeting below it (and below
+  //! kSliverTipDeg) are no crease when the face is an outlier (features/creases.h), lest noise
+  //! make exempt corners.
   double angleBoundDeg = 30.0;
   //! false: no edge is sharp by its dihedral angle; the features are featureEdges alone (the
   //! creases were detected on the mesh this one was refined from).

@@ -12,6 +12,7 @@
 #include <set>
 #include <string>
 
+#include "features/creases.h"
 #include "features/curve_mesh.h"
 #include "features/edge_graph.h"
 #include "features/segmentation.h"
@@ -783,4 +784,47 @@ TEST_CASE("features: a curve's chord from a corner that would close a wedge belo
     INFO("bound " << bound);
     CHECK(sampled == (bound > 20));
   }
+}
+
+TEST_CASE("features: above a 30-degree bound the outlier tests look at the same faces (a face whose tips are all 30 degrees or more is no sliver)") {
+  // triangle (a, b, c) of a flat grid split at p, beside the middle of ab and lifted: the face
+  // (a, b, p) stands 75° out of the sheet with corners of about 32.5° at a and b, its three
+  // edges sharp; the faces around it bend by much less
+  MeshBuffers m = testshapes::square(8);
+  const size_t t = 3 * 70;
+  const uint32_t a = m.triangles[t], b = m.triangles[t + 1], c = m.triangles[t + 2];
+  double mid[3], along[2], side[2];
+  for (int k = 0; k < 3; ++k) mid[k] = 0.5 * (m.positions[3 * a + k] + m.positions[3 * b + k]);
+  for (int k = 0; k < 2; ++k) along[k] = m.positions[3 * b + k] - m.positions[3 * a + k], side[k] = m.positions[3 * c + k] - mid[k];
+  const double ab = std::hypot(along[0], along[1]);
+  const double s0 = (side[0] * along[0] + side[1] * along[1]) / (ab * ab);
+  double perp[2] = {side[0] - s0 * along[0], side[1] - s0 * along[1]};
+  const double pn = std::hypot(perp[0], perp[1]);
+  const double tilt = 75 * kPi / 180, rise = 0.5 * ab * std::tan(32.5 * kPi / 180);  // p's height over ab
+  const double p[3] = {mid[0] + rise * std::cos(tilt) * perp[0] / pn, mid[1] + rise * std::cos(tilt) * perp[1] / pn, rise * std::sin(tilt)};
+  const uint32_t pi = uint32_t(m.vertexCount());
+  m.positions.insert(m.positions.end(), p, p + 3);
+  m.triangles[t + 2] = pi;
+  m.triangles.insert(m.triangles.end(), {b, c, pi, c, a, pi});
+  const EdgeGraph g = buildEdgeGraph(m);
+  const uint32_t face = uint32_t(t / 3);
+  for (int k = 0; k < 3; ++k) {
+    INFO("corner " << k);
+    CHECK(g.cornerAngle(face, k) * 180 / kPi >= 30);
+  }
+  const Creases sharp = detectCreases(g, CreaseOptions{});  // every candidate
+  REQUIRE((sharp.edge[g.findEdge(a, b)] && sharp.edge[g.findEdge(a, pi)] && sharp.edge[g.findEdge(b, pi)]));
+  const auto features = [&](double bound) {
+    FeatureOptions o;
+    o.minFeatureLength = 0.01;
+    o.angleBoundDeg = bound;
+    const Segmentation s = segment(g, o);
+    std::vector<uint32_t> out;
+    for (uint32_t e = 0; e < g.edgeCount(); ++e)
+      if (s.edgeKind[e] == EdgeKind::Feature) out.push_back(e);
+    return out;
+  };
+  const std::vector<uint32_t> at30 = features(30);
+  CHECK(std::count(at30.begin(), at30.end(), g.findEdge(a, b)) == 1);  // its edge on the sheet is a crease
+  CHECK(features(35) == at30);
 }
