@@ -15,9 +15,10 @@
 //     where the faces across do bend and the face is a cap (its other corner on the long edge
 //     also below outlierTipDeg, so its third corner is obtuse and near that edge), one crease
 //     passes the sliver on both sides: the long edge is no candidate, or the short one where
-//     the long edge is on a line; likewise a flap: a face hanging on the boundary by one candidate edge (its other two
-//     edges on the boundary) with both corners there below outlierTipDeg, a sliver whose
-//     normal is noise and whose crease would only wall it off behind two exempt corners;
+//     the long edge is on a line; likewise a flap: a face hanging on the boundary by one
+//     candidate edge (its other two edges on the boundary) with both corners there below
+//     outlierTipDeg, a sliver whose normal is noise and whose crease would only wall it off
+//     behind two exempt corners;
 //   * contrast: an edge's dihedral against the median dihedral of the edges around its two ends
 //     (its own chain excluded): a crease stands out of a smooth neighbourhood, a facet of a
 //     coarse surface does not;
