@@ -25,6 +25,9 @@ constexpr double kPlanarAngleMargin = 2.0;
 // above it the off-center refinement's count grows steeply (camelhead at 34°: 1.76 times its
 // count at 32°), while the optimization lifts the other triangles to a higher 3D bound.
 constexpr double kPlanarMaxDeg = 32.0;
+// A 3D bound whose planar bound (with its margin) is above kPlanarMaxDeg: the refinement leaves
+// the free triangles to the optimization there.
+inline bool aboveMaxPlanar(double minAngle) { return minAngle + kPlanarAngleMargin > kPlanarMaxDeg; }
 // Passes of the optimization over the triangles below the bound when the planar refinement
 // gives them less than the bound and its margin (measured: a bound of 35 held on 3 more models
 // with them, in fewer certificate rounds).
@@ -319,9 +322,9 @@ bool refineAndLift(const Surface& surf, const RemeshOptions& opt, const Meshing&
   // off-center factor for the apex angle: the off-center of factor f sits f / (2 tan(θ/2))
   // shortest-edge lengths from that edge, where it sees the edge under 2 atan(tan(θ/2) / f)
   // (refine.h); never above the planar default (bounds near 45° would otherwise get it)
-  const bool aboveMax = opt.minAngle + kPlanarAngleMargin > kPlanarMaxDeg;
   if (ro.minAngleDeg > 0)
-    ro.offcenterFactor = std::min(0.95, dmath::tan(0.5 * ro.minAngleDeg * kPi / 180) / dmath::tan(0.5 * (aboveMax ? kOffcenterApexHighDeg : kOffcenterApexDeg) * kPi / 180));
+    ro.offcenterFactor = std::min(0.95, dmath::tan(0.5 * ro.minAngleDeg * kPi / 180) /
+                                            dmath::tan(0.5 * (aboveMaxPlanar(opt.minAngle) ? kOffcenterApexHighDeg : kOffcenterApexDeg) * kPi / 180));
   // Boundary pieces shorter than this are not split: far below any size the output can mean,
   // and above the resolution at which two splits of one input edge are told apart (the sample
   // dedupe in addSplitSample); refinements that keep splitting each other's segments stop here.
@@ -356,7 +359,7 @@ bool refineAndLift(const Surface& surf, const RemeshOptions& opt, const Meshing&
   // the nearer corner of a curve between two is the right one at any bound; at 30° and below the
   // first one is kept for now, as their outputs are (the nearer one there: 5 models change, 7-10 %
   // fewer triangles on 4, bench/results/deg35-2026-12-03.md)
-  cornerChains(surf, m, w, bp, pslg.points.size() / 2, opt.minAngle + kPlanarAngleMargin > kPlanarMaxDeg, opt.minAngle, ro.apexOf,
+  cornerChains(surf, m, w, bp, pslg.points.size() / 2, aboveMaxPlanar(opt.minAngle), opt.minAngle, ro.apexOf,
                ro.chainOf);
   planar::RefineResult rr;
   try {
@@ -546,7 +549,7 @@ OptimizeResult optimizeMesh(const Surface& surf, const RemeshOptions& opt, const
   // the planar refinement left the interior triangles below the bound and its margin: passes
   // aimed at those still below the bound in 3D, the valence operations and one pass more (the
   // moves even out the stars the flips and collapses change)
-  if (opt.minAngle + kPlanarAngleMargin > kPlanarMaxDeg) {
+  if (aboveMaxPlanar(opt.minAngle)) {
     oo.boundPasses = kBoundPasses;
     oo.valenceOperations = true;
     ++oo.maxIterations;
