@@ -228,21 +228,14 @@ struct Cutter {
   // parts are all disks wins, else the k = maxK partition is kept and its non-disk parts are
   // returned in `todo`.
   void partition(const std::vector<uint32_t>& region, uint32_t minK, uint32_t maxK, const PatchMesh* pm,
-                 std::vector<std::vector<uint32_t>>& done, std::vector<std::vector<uint32_t>>& todo,
-                 const std::vector<uint32_t>& seedFaces = {}) {
+                 std::vector<std::vector<uint32_t>>& done, std::vector<std::vector<uint32_t>>& todo) {
     for (uint32_t i = 0; i < region.size(); ++i) local[region[i]] = i;
-    std::vector<uint32_t> first = pm ? topologySeeds(*pm) : std::vector<uint32_t>{};
-    if (!pm) {
-      for (uint32_t f : seedFaces)
-        if (local[f] != kNone && std::find(first.begin(), first.end(), local[f]) == first.end()) first.push_back(local[f]);
-      if (first.size() < 2) first.clear();
-    }
     maxK = std::min<uint32_t>(maxK, uint32_t(region.size()));
     std::vector<uint32_t> label, cut;
     std::vector<std::vector<uint32_t>> parts;
     std::vector<uint8_t> disk;
     // the cuts tried are undone: the mask it sees stays
-    VoronoiSeeds voronoi(g, mask, region, local, std::move(first));
+    VoronoiSeeds voronoi(g, mask, region, local, pm ? topologySeeds(*pm) : std::vector<uint32_t>{});
     for (uint32_t k = std::min(minK, maxK); k <= maxK; ++k) {
       voronoi.growTo(k);
       label = voronoi.label;
@@ -505,32 +498,12 @@ Segmentation segment(const EdgeGraph& g, const FeatureOptions& options, const Pr
   return seg;
 }
 
-bool splitPatch(const EdgeGraph& g, Segmentation& seg, uint32_t p, uint32_t parts, const std::vector<uint32_t>& seeds) {
+bool splitPatch(const EdgeGraph& g, Segmentation& seg, uint32_t p, uint32_t parts) {
   if (p >= seg.patches.size() || seg.patches[p].size() < 2) return false;
   const std::vector<uint32_t> region = seg.patches[p];  // the new cuts and their ends lie in it
-  const std::vector<EdgeKind> kinds = seg.edgeKind;
-  const uint32_t cuts = seg.cutEdgeCount;
+  Cutter cutter(g, seg, 1u << 30);
   std::vector<std::vector<uint32_t>> done, todo;
-  // the farthest points first; when they leave the seeds in one part, the seeds themselves
-  const auto together = [&] {
-    for (const auto* parts : {&done, &todo})
-      for (const auto& part : *parts)
-        if (std::count_if(seeds.begin(), seeds.end(), [&](uint32_t f) { return std::find(part.begin(), part.end(), f) != part.end(); }) >= 2)
-          return true;
-    return false;
-  };
-  Cutter farthest(g, seg, 1u << 30);
-  farthest.partition(region, std::max<uint32_t>(2, parts), 8, nullptr, done, todo);
-  const bool seeded = seeds.size() >= 2 && together();
-  if (seeded) {
-    seg.edgeKind = kinds;
-    seg.cutEdgeCount = cuts;
-    done.clear();
-    todo.clear();
-  }
-  Cutter apart(g, seg, 1u << 30);
-  if (seeded) apart.partition(region, std::max<uint32_t>(2, parts), 8, nullptr, done, todo, seeds);
-  Cutter& cutter = seeded ? apart : farthest;
+  cutter.partition(seg.patches[p], std::max<uint32_t>(2, parts), 8, nullptr, done, todo);
   uint32_t count = 0;
   while (!todo.empty()) {
     auto r = std::move(todo.back());

@@ -91,11 +91,9 @@ Segmentation segment(const EdgeGraph& g, const FeatureOptions& options, const Pr
 
 //! Split patch `p` into at least two disks by a geodesic Voronoi partition (k farthest-point
 //! seeds, multi-source Dijkstra on the face graph) and rebuild curves, corners and patch ids.
-//! Used when a patch's conformal scale factor varies too much. `seeds` (input faces of p, two or
-//! more; else ignored): when the farthest points' partition leaves two of them in one part, the
-//! seeds are the first seeds instead (the farthest points after them), so the cells keep them
-//! apart. Returns false when the patch is too small to split (fewer than 2 faces).
-bool splitPatch(const EdgeGraph& g, Segmentation& seg, uint32_t p, uint32_t parts = 2, const std::vector<uint32_t>& seeds = {});
+//! Used when a patch's conformal scale factor varies too much. Returns false when the patch is
+//! too small to split (fewer than 2 faces).
+bool splitPatch(const EdgeGraph& g, Segmentation& seg, uint32_t p, uint32_t parts = 2);
 
 //! Per input vertex: the smallest wedge (radians) between the input's own feature and boundary
 //! edges around it, the sum of the face angles between two consecutive such edges (cuts do not

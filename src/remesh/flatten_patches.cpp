@@ -28,8 +28,7 @@ constexpr double kSinkScaleRatio = 4.0;
 // through: the border already holds the scale that close, and the cut would only shave off a
 // strip narrower than two output edges, which the refinement grades into (docs/decisions/0007).
 // man: 16 of its 38 sink cuts were 0.3-1.5 edges deep, each shaving 2-50 faces off one patch
-// while its spread stayed at 7-10; armadillo's, elk's, face's and spot's were 5 or more deep
-// (docs/decisions/0039).
+// while its spread stayed at 7-10; armadillo's, elk's, face's and spot's were 5 or more deep.
 constexpr double kSinkDepth = 2.0;
 
 // When a patch's flattening fails, a vertex whose 3D angle is within this of 2π the wrong way is
@@ -102,7 +101,6 @@ struct Flattening {
   size_t next = 0;           // the boundary conditions tried: order[0, next)
   bool flattened = false;    // by order[next - 1]
   bool splitAsked = false;   // its first condition failed and the patch is big enough to split
-  std::vector<uint32_t> splitSeeds;  // input faces a split keeps apart: the first condition's worst crossing
   bool scaleSplit = false;   // flattened, with scale factors spreading more than maxScaleRatio
   double scaleRatio = 1;     // flattened: the spread of its scale factors (max / min)
   std::string lastError;
@@ -153,46 +151,16 @@ uint64_t curveStateHash(const F::Segmentation& seg) {
 // neighbour) and brings back a segmentation seen after such a split before is undone: the
 // patch's next split would trade the same faces back and forth without end. `lateral` keeps
 // the states those splits made.
-bool splitOnce(Surface& surf, uint32_t p, std::set<uint64_t>& lateral, const std::vector<uint32_t>& seeds) {
+bool splitOnce(Surface& surf, uint32_t p, std::set<uint64_t>& lateral) {
   const size_t before = surf.seg.patches.size();
   const std::vector<F::EdgeKind> kinds = surf.seg.edgeKind;
   const uint32_t cuts = surf.seg.cutEdgeCount;
-  if (!F::splitPatch(surf.g, surf.seg, p, 2, seeds)) return false;
+  if (!F::splitPatch(surf.g, surf.seg, p)) return false;
   if (surf.seg.patches.size() > before || lateral.insert(curveStateHash(surf.seg)).second) return true;
   surf.seg.edgeKind = kinds;
   surf.seg.cutEdgeCount = cuts;
   F::rebuildCurves(surf.g, surf.seg);
   return false;
-}
-
-// The input faces beside the two boundary edges of the crossing of a failed layout that lie
-// farthest apart along the border (most often two sides of a cut, or two cuts, that the flat map
-// brings together): splitPatch parts them when the farthest points do not. A split that leaves
-// them in one part keeps the overlap there: man's largest failing patch was split seven times
-// over around the same crossing. Empty without a crossing.
-std::vector<uint32_t> crossingSeeds(const F::PatchMesh& pm, const FlattenReport& r) {
-  const auto& T = pm.mesh.triangles;
-  // border position (loop, index) and face of the border edge a-b
-  const auto find = [&](uint32_t a, uint32_t b, size_t& loop, size_t& at) {
-    for (loop = 0; loop < pm.boundaryLoops.size(); ++loop)
-      for (at = 0; at < pm.boundaryLoops[loop].size(); ++at) {
-        const auto& h = pm.boundaryLoops[loop][at];
-        const uint32_t x = T[3 * h.face + h.corner], y = T[3 * h.face + (h.corner + 1) % 3];
-        if ((x == a && y == b) || (x == b && y == a)) return h.face;
-      }
-    return kNone;
-  };
-  std::vector<uint32_t> seeds;
-  size_t widest = 0;
-  for (const auto& c : r.boundaryCrossingEdges) {
-    size_t la, ia, lb, ib;
-    const uint32_t fa = find(c[0], c[1], la, ia), fb = find(c[2], c[3], lb, ib);
-    if (fa == kNone || fb == kNone || fa == fb) continue;
-    const size_t n = pm.boundaryLoops[la].size();
-    const size_t gap = la != lb ? n : std::min(ia > ib ? ia - ib : ib - ia, n - (ia > ib ? ia - ib : ib - ia));
-    if (gap > widest) widest = gap, seeds = {pm.faceInput[fa], pm.faceInput[fb]};
-  }
-  return seeds;
 }
 
 // Try the boundary conditions order[f.next...] on f.w->pm until one works; stop after a failure of
@@ -211,9 +179,7 @@ void tryConditions(const F::Segmentation& seg, const std::vector<BoundaryConditi
       fo.corners = f.corners;
     }
     try {
-      fo.requireValidLayout = bc != order.front();  // the first condition's crossings seed a split
       f.w->flat = flatten(f.w->pm.mesh, fo);
-      if (!f.w->flat.report.invalidLayout.empty()) fail(Code::NumericalFailure, Stage::Flatten, f.w->flat.report.invalidLayout);
       f.flattened = true;
     } catch (const Error& e) {
       if (e.code() == Code::Cancelled) throw;
@@ -222,7 +188,6 @@ void tryConditions(const F::Segmentation& seg, const std::vector<BoundaryConditi
       // developable and keep the least distorting map; split while the patch is big enough
       if (bc == order.front() && faces >= kMinSplitFaces) {
         f.splitAsked = true;
-        f.splitSeeds = crossingSeeds(f.w->pm, f.w->flat.report);
         return;
       }
     }
@@ -411,7 +376,7 @@ Patches flattenPatches(Surface& surf, const RemeshOptions& opt, const Progress& 
           continue;
         }
         if (f.splitAsked) {
-          if (splitOnce(surf, p, lateral, f.splitSeeds)) {
+          if (splitOnce(surf, p, lateral)) {
             ++rep.patchSplitsForScale;
             rep.warnings.push_back("patch split after its first boundary condition failed: " + f.lastError);
             split = true;
@@ -425,7 +390,7 @@ Patches flattenPatches(Surface& surf, const RemeshOptions& opt, const Progress& 
         if (!f.flattened) {
           // every boundary condition failed (a layout that overlaps itself or a flow that stalls):
           // split the patch and retry
-          if (faces.size() < kMinSplitFaces || !splitOnce(surf, p, lateral, f.splitSeeds))
+          if (faces.size() < kMinSplitFaces || !splitOnce(surf, p, lateral))
             fail(Code::NumericalFailure, Stage::Flatten, "patch " + std::to_string(p) + " could not be flattened: " + f.lastError);
           ++rep.patchSplitsForScale;
           rep.warnings.push_back("patch split after a flattening failure: " + f.lastError);
@@ -452,7 +417,7 @@ Patches flattenPatches(Surface& surf, const RemeshOptions& opt, const Progress& 
           split = true;
           continue;
         }
-        if (f.scaleSplit && faces.size() >= kMinSplitFaces && splitOnce(surf, p, lateral, {})) {
+        if (f.scaleSplit && faces.size() >= kMinSplitFaces && splitOnce(surf, p, lateral)) {
           ++rep.patchSplitsForScale;
           split = true;
           continue;

@@ -901,27 +901,3 @@ TEST_CASE("features: rebuildCurves after local changes gives what a rebuild from
     if (mesh.vertexCount() < 1000) CHECK(loops > 0);  // the cylinder's circles are loops without a corner
   }
 }
-
-TEST_CASE("features: splitPatch with seed faces puts them in different parts, where farthest points keep neighbours together") {
-  const EdgeGraph g = buildEdgeGraph(testshapes::square(8));
-  Segmentation s = segment(g, FeatureOptions{});
-  REQUIRE(s.patches.size() == 1);
-  // two faces beside one inner edge near a corner of the square
-  uint32_t a = kNone, b = kNone;
-  for (uint32_t e = 0; e < g.edgeCount() && a == kNone; ++e)
-    if (!g.isBoundary(e)) a = g.edgeFaces[e][0], b = g.edgeFaces[e][1];
-  REQUIRE(a != kNone);
-  Segmentation far = s, apart = s;
-  REQUIRE(splitPatch(g, far, 0));
-  CHECK(far.facePatch[a] == far.facePatch[b]);  // the farthest points lie at opposite corners
-  REQUIRE(splitPatch(g, s, 0, 2, {a, b}));
-  CHECK(s.facePatch[a] != s.facePatch[b]);
-  checkPatchesAreDisks(g, s);
-  // seeds the farthest points already part: their split as it is
-  uint32_t c = kNone;
-  for (uint32_t f = 0; f < g.faceCount && c == kNone; ++f)
-    if (far.facePatch[f] != far.facePatch[a]) c = f;
-  REQUIRE(c != kNone);
-  REQUIRE(splitPatch(g, apart, 0, 2, {a, c}));
-  CHECK(apart.edgeKind == far.edgeKind);
-}
