@@ -24,13 +24,6 @@ constexpr size_t kMinSplitFaces = 2;
 // the sink as a quality mesh can, far slower than the planar size shrinks there).
 constexpr double kSinkScaleRatio = 4.0;
 
-// A sink nearer the patch's border than this many output edges (the sizing there) is not cut
-// through: the border already holds the scale that close, and the cut would only shave off a
-// strip narrower than two output edges, which the refinement grades into (docs/decisions/0007).
-// man: 16 of its 38 sink cuts were 0.3-1.5 edges deep, each shaving 2-50 faces off one patch
-// while its spread stayed at 7-10; armadillo's, elk's, face's and spot's were 5 or more deep.
-constexpr double kSinkDepth = 2.0;
-
 // When a patch's flattening fails, a vertex whose 3D angle is within this of 2π the wrong way is
 // cut through (features/sink_cuts.h) rather than left inside a part of a split, which fails
 // again for the same reason however small: a border vertex whose wedge exceeds 2π − kConeGap
@@ -410,9 +403,8 @@ Patches flattenPatches(Surface& surf, const RemeshOptions& opt, const Progress& 
           split = true;
           continue;
         }
-        if (const uint32_t sink = scaleSink(f.w->pm, f.w->flat.u);
-            f.scaleRatio > kSinkScaleRatio && sink != kNone &&
-            F::cutThroughSink(surf.g, surf.seg, p, sink, minWedge, kSinkDepth * surf.sizing.h[sink])) {
+        if (f.scaleRatio > kSinkScaleRatio &&
+            F::cutThroughSink(surf.g, surf.seg, p, scaleSink(f.w->pm, f.w->flat.u), minWedge)) {
           ++rep.sinkCuts;
           split = true;
           continue;
