@@ -285,6 +285,33 @@ struct Cutter {
   }
 };
 
+// Patches: faces connected across edges that are not curve edges (seg.facePatch, seg.patches).
+void floodPatches(const EdgeGraph& g, Segmentation& seg) {
+  seg.facePatch.assign(g.faceCount, kNone);
+  seg.patches.clear();
+  std::vector<uint32_t> stack;
+  for (uint32_t f0 = 0; f0 < g.faceCount; ++f0) {
+    if (seg.facePatch[f0] != kNone) continue;
+    uint32_t p = uint32_t(seg.patches.size());
+    seg.patches.emplace_back();
+    seg.facePatch[f0] = p;
+    stack.push_back(f0);
+    while (!stack.empty()) {
+      uint32_t f = stack.back();
+      stack.pop_back();
+      seg.patches[p].push_back(f);
+      for (uint32_t e : g.faceEdges[f]) {
+        if (seg.isCurveEdge(e)) continue;
+        uint32_t o = g.edgeFaces[e][0] == f ? g.edgeFaces[e][1] : g.edgeFaces[e][0];
+        if (o != kNone && seg.facePatch[o] == kNone) {
+          seg.facePatch[o] = p;
+          stack.push_back(o);
+        }
+      }
+    }
+  }
+}
+
 // Merge patches narrower than minWidth into a neighbour (FeatureOptions::minPatchWidth). Width:
 // 2·area / perimeter, the width of a strip (a disk's radius, half a sliver triangle's height).
 // Delaunay refinement meshes a strip of width w with boundary segments of about 2w (a longer one
@@ -431,6 +458,92 @@ std::vector<double> featureWedgeAngles(const EdgeGraph& g, const Segmentation& s
   auto separates = [&](uint32_t e) { return seg.edgeKind[e] == EdgeKind::Feature || seg.edgeKind[e] == EdgeKind::Boundary; };
   for (uint32_t v = 0; v < g.vertexCount; ++v) out[v] = smallestWedge(g, v, separates, scratch);
   return out;
+}
+
+void rebuildCurves(const EdgeGraph& g, Segmentation& seg) {
+  const double turnLimit = seg.cornerTurnDeg * kPi / 180.0;
+  std::vector<uint32_t> valence(g.vertexCount, 0);
+  std::vector<std::array<uint32_t, 2>> twoEdges(g.vertexCount, {kNone, kNone});
+  for (uint32_t e = 0; e < g.edgeCount(); ++e) {
+    if (!seg.isCurveEdge(e)) continue;
+    for (uint32_t v : g.edgeVerts[e]) {
+      if (valence[v] < 2) twoEdges[v][valence[v]] = e;
+      ++valence[v];
+    }
+  }
+  seg.vertexCorner.assign(g.vertexCount, 0);
+  for (uint32_t v = 0; v < g.vertexCount; ++v) {
+    if (valence[v] == 0) continue;
+    if (valence[v] != 2) {
+      seg.vertexCorner[v] = 1;
+      continue;
+    }
+    uint32_t e1 = twoEdges[v][0], e2 = twoEdges[v][1];
+    if (seg.edgeKind[e1] != seg.edgeKind[e2]) {
+      seg.vertexCorner[v] = 1;
+      continue;
+    }
+    // a cut is ours and smooth: it has no corners of its own (the staircase of input edges it
+    // follows would otherwise put a corner, and so a forced output vertex, at every other step)
+    if (seg.edgeKind[e1] == EdgeKind::Cut) continue;
+    Vec3 a = g.positions[v] - g.positions[g.otherVertex(e1, v)];
+    Vec3 b = g.positions[g.otherVertex(e2, v)] - g.positions[v];
+    if (angleBetween(a, b) > turnLimit) seg.vertexCorner[v] = 1;
+  }
+  seg.curves.clear();
+  seg.edgeCurve.assign(g.edgeCount(), kNone);
+  auto nextEdge = [&](uint32_t v, uint32_t e) {
+    return twoEdges[v][0] == e ? twoEdges[v][1] : twoEdges[v][0];
+  };
+  auto trace = [&](uint32_t v, uint32_t e) {
+    Curve c;
+    c.kind = seg.edgeKind[e];
+    c.vertices.push_back(v);
+    for (uint32_t guard = 0; guard <= g.edgeCount(); ++guard) {
+      seg.edgeCurve[e] = uint32_t(seg.curves.size());
+      c.edges.push_back(e);
+      c.length += g.edgeLength(e);
+      v = g.otherVertex(e, v);
+      c.vertices.push_back(v);
+      if (seg.vertexCorner[v]) break;
+      e = nextEdge(v, e);
+    }
+    seg.curves.push_back(std::move(c));
+  };
+  for (uint32_t v = 0; v < g.vertexCount; ++v) {
+    if (!seg.vertexCorner[v]) continue;
+    for (uint32_t k = g.vertexEdgeStart[v]; k < g.vertexEdgeStart[v + 1]; ++k) {
+      uint32_t e = g.vertexEdgeIds[k];
+      if (seg.isCurveEdge(e) && seg.edgeCurve[e] == kNone) trace(v, e);
+    }
+  }
+  // closed loops without a corner: two artificial corners, at the start and half the length
+  for (uint32_t e0 = 0; e0 < g.edgeCount(); ++e0) {
+    if (!seg.isCurveEdge(e0) || seg.edgeCurve[e0] != kNone) continue;
+    uint32_t v = g.edgeVerts[e0][0], e = e0;
+    std::vector<uint32_t> verts{v};
+    std::vector<double> arc{0.0};
+    for (uint32_t guard = 0; guard <= g.edgeCount(); ++guard) {
+      arc.push_back(arc.back() + g.edgeLength(e));
+      v = g.otherVertex(e, v);
+      if (v == verts[0]) break;
+      verts.push_back(v);
+      e = nextEdge(v, e);
+    }
+    uint32_t half = 1;
+    for (uint32_t i = 1; i < verts.size(); ++i)
+      if (std::abs(arc[i] - 0.5 * arc.back()) < std::abs(arc[half] - 0.5 * arc.back())) half = i;
+    seg.vertexCorner[verts[0]] = 2;
+    seg.vertexCorner[verts[half]] = 2;
+    trace(verts[0], e0);
+    uint32_t back = twoEdges[verts[0]][0] == e0 ? twoEdges[verts[0]][1] : twoEdges[verts[0]][0];
+    if (seg.edgeCurve[back] == kNone) trace(verts[0], back);
+  }
+  floodPatches(g, seg);
+  for (auto& c : seg.curves) {
+    const auto& fs = g.edgeFaces[c.edges[0]];
+    c.patches = {fs[0] == kNone ? kNone : seg.facePatch[fs[0]], fs[1] == kNone ? kNone : seg.facePatch[fs[1]]};
+  }
 }
 
 Segmentation segment(const EdgeGraph& g, const FeatureOptions& options, const ProgressFn& progress) {

@@ -264,17 +264,9 @@ Patches flattenPatches(Surface& surf, const RemeshOptions& opt, const Progress& 
   std::map<std::vector<uint32_t>, std::unique_ptr<PatchWork>> cache;
   // flattenings made after the first split of a round, checked before use in the next (stillValid)
   std::map<std::vector<uint32_t>, Flattening> spare;
-  // each patch's sorted faces, by its smallest face (the first listed): a patch the splits left
-  // alone keeps its key from round to round instead of being sorted again
-  std::map<uint32_t, std::pair<std::vector<uint32_t>, std::vector<uint32_t>>> keys;
-  auto keyOf = [&keys](const std::vector<uint32_t>& faces) -> const std::vector<uint32_t>& {
-    auto& [listed, sorted] = keys[faces[0]];
-    if (listed != faces) {
-      listed = faces;
-      sorted = faces;
-      std::sort(sorted.begin(), sorted.end());
-    }
-    return sorted;
+  auto keyOf = [](std::vector<uint32_t> faces) {
+    std::sort(faces.begin(), faces.end());
+    return faces;
   };
   const std::vector<BoundaryCondition> order = conditionOrder(opt.boundary);
   // Patches are flattened a window ahead of the patch order. A split ends the round, and the
@@ -321,7 +313,7 @@ Patches flattenPatches(Surface& surf, const RemeshOptions& opt, const Progress& 
     std::vector<uint32_t> todo;
     std::vector<Flattening> made;
     for (uint32_t p = 0; p < surf.seg.patches.size(); ++p) {
-      const auto& key = keyOf(surf.seg.patches[p]);
+      auto key = keyOf(surf.seg.patches[p]);
       if (cache.count(key)) continue;
       todo.push_back(p);
       auto it = spare.find(key);
