@@ -153,6 +153,8 @@ async function errorsShown(): Promise<string[]> {
 interface RemeshTiming {
   /** Worst gap between frames from the click until the result arrived (the gap open then included). */
   remeshMaxGap: number;
+  /** Longest main-thread task (Long Tasks API: 50 ms and over; 0 if none) that overlapped the remesh. */
+  remeshMaxTask: number;
   /** Gaps from the result's arrival until the views were drawn, and the gap across the arrival. */
   applyGaps: number[];
   straddling: number;
@@ -171,8 +173,13 @@ interface RemeshTiming {
  */
 async function remeshWithProbe(): Promise<RemeshTiming> {
   await page.evaluate(() => {
-    const rec = { frames: [] as number[], clickAt: NaN, stop: false };
+    const rec = { frames: [] as number[], tasks: [] as { start: number; end: number }[], clickAt: NaN, stop: false, observer: undefined as PerformanceObserver | undefined };
     (window as unknown as { testProbe: typeof rec }).testProbe = rec;
+    // every main-thread task of 50 ms or more: script, events, and the rendering steps (ResizeObserver, GL waits)
+    rec.observer = new PerformanceObserver((list) => {
+      for (const e of list.getEntries()) rec.tasks.push({ start: e.startTime, end: e.startTime + e.duration });
+    });
+    rec.observer.observe({ type: 'longtask' });
     document.querySelector('[data-testid=remesh]')!.addEventListener('click', () => { rec.clickAt = performance.now(); }, { once: true, capture: true });
     const tick = () => {
       if (rec.stop) return;
@@ -184,7 +191,7 @@ async function remeshWithProbe(): Promise<RemeshTiming> {
   await page.click('[data-testid=remesh]');
   const state = await waitState(['remeshed', 'error'], 100_000);
   if (state === 'error') throw new Error(`remesh failed in the page: ${await page.textContent('[data-testid=error]')}`);
-  type Win = { testProbe: { frames: number[]; clickAt: number; stop: boolean }; conformeshPage: { lastRemesh: Record<string, number> } };
+  type Win = { testProbe: { frames: number[]; tasks: { start: number; end: number }[]; clickAt: number; stop: boolean; observer: PerformanceObserver }; conformeshPage: { lastRemesh: Record<string, number> } };
   // one more frame after the application, so the last gap is closed
   await page.waitForFunction(() => {
     const w = window as unknown as Win;
@@ -193,8 +200,10 @@ async function remeshWithProbe(): Promise<RemeshTiming> {
   const r = await page.evaluate(() => {
     const w = window as unknown as Win;
     w.testProbe.stop = true;
+    w.testProbe.tasks.push(...w.testProbe.observer.takeRecords().map((e) => ({ start: e.startTime, end: e.startTime + e.duration })));
+    w.testProbe.observer.disconnect();
     const { resultAt, appliedAt, applySteps } = w.conformeshPage.lastRemesh as unknown as { resultAt: number; appliedAt: number; applySteps: Record<string, number> };
-    return { frames: w.testProbe.frames, clickAt: w.testProbe.clickAt, resultAt, appliedAt, applySteps };
+    return { frames: w.testProbe.frames, tasks: w.testProbe.tasks, clickAt: w.testProbe.clickAt, resultAt, appliedAt, applySteps };
   });
   expect(r.clickAt, 'click seen').toBeGreaterThan(0);
   expect(r.resultAt).toBeGreaterThan(r.clickAt);
@@ -205,6 +214,7 @@ async function remeshWithProbe(): Promise<RemeshTiming> {
   const applying = [r.resultAt, ...r.frames.slice(firstAfter, endIdx + 1)];
   return {
     remeshMaxGap: Math.max(...gaps(during)),
+    remeshMaxTask: Math.max(0, ...r.tasks.filter((k) => k.end > r.clickAt && k.start < r.resultAt).map((k) => k.end - k.start)),
     applyGaps: gaps(applying),
     straddling: firstAfter > 0 ? r.frames[firstAfter]! - r.frames[firstAfter - 1]! : NaN,
     steps: r.applySteps,
@@ -216,7 +226,7 @@ async function remeshWithProbe(): Promise<RemeshTiming> {
 
 const timings: RemeshTiming[] = [];
 const describeTiming = (t: RemeshTiming) =>
-  `remesh ${t.remeshMs.toFixed(0)} ms, ${t.frames} frames, max gap ${t.remeshMaxGap.toFixed(1)} ms; ` +
+  `remesh ${t.remeshMs.toFixed(0)} ms, ${t.frames} frames, max gap ${t.remeshMaxGap.toFixed(1)} ms, longest main-thread task ${t.remeshMaxTask.toFixed(0)} ms; ` +
   `application ${t.applyMs.toFixed(0)} ms, gaps [${t.applyGaps.map((g) => g.toFixed(0)).join(', ')}] ms, gap across the arrival ${t.straddling.toFixed(0)} ms; ` +
   `steps ${Object.entries(t.steps).map(([k, v]) => `${k} ${v.toFixed(0)}`).join(', ')} ms`;
 
@@ -577,21 +587,25 @@ describe('demo page in headless Chromium', () => {
     });
 
     it('the main thread is never blocked > 100 ms during the remesh', async () => {
-      // The test's own rAF probe measures every gap between frames from the click on Remesh until
-      // the result arrives in the page (the gap still open then included), three times: the first
-      // remesh (right after the Cancel test, in a fresh worker) and two more. Every one must stay
-      // under 100 ms. With the software GL here, anything that resizes or redraws a WebGL view
-      // during the remesh stalls the main thread on the starved GPU process (the first remesh's
-      // 130-415 ms gaps were the views resized by the cleared 'cancelled' notice).
+      // Three remeshes: the first (right after the Cancel test, in a fresh worker) and two more.
+      // In each, from the click on Remesh until the result arrives in the page, no main-thread task
+      // may last 100 ms (Long Tasks API: script, events and the rendering steps alike). With the
+      // software GL here, anything that resizes or redraws a WebGL view during the remesh stalls the
+      // main thread on the starved GPU process (the first remesh's 130-415 ms were the views resized
+      // by the cleared 'cancelled' notice): such a stall is one long task.
+      // The test's rAF probe's frame gaps are reported, not bounded: on two cores they also open
+      // while the main thread is idle, when V8's background optimizing compiles of the module hold
+      // the renderer's thread pool that rasters the frames (a Chrome trace of a 110 ms gap: three
+      // pool threads in wasm.TopTierCompilation for 158-504 ms, no main-thread task over 32 ms).
       // The gaps while the result is applied (views rebuilt and redrawn, one per frame) are only
       // reported: here each frame that shows a rebuilt view waits for SwiftShader to draw it
       // (GLES2::ReadPixels in the commit, 95-150 ms in a Chrome trace): the first remesh of a
       // page had 136-221 ms gaps there, runs 2-3 67-121 ms at most (3 runs of this file).
       for (let i = 0; i < 2; ++i) timings.push(await remeshWithProbe());
       timings.forEach((t, i) => console.log(`remesh run ${i + 1}: ${describeTiming(t)}`));
-      // frames were drawn during every remesh (a page that drew none would hide its stalls)
+      // frames were drawn during every remesh (a page that drew none would not be responsive)
       for (const t of timings) expect(t.frames).toBeGreaterThan(0);
-      expect(Math.max(...timings.map((t) => t.remeshMaxGap))).toBeLessThan(100);
+      expect(Math.max(...timings.map((t) => t.remeshMaxTask))).toBeLessThan(100);
     });
 
     it('the flattened-domain view draws every patch after a remesh', async () => {
