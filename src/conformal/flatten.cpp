@@ -309,14 +309,15 @@ FlatPatch flattenCompact(const MeshBuffers& patch, const FlattenOptions& options
   R.secondsLayout = since(t1);
   R.invertedTriangles = L.invertedTriangles;
   R.boundaryCrossings = L.boundaryCrossings;
+  for (const auto& c : L.crossingEdges) R.boundaryCrossingEdges.push_back({uint32_t(c[0]), uint32_t(c[1]), uint32_t(c[2]), uint32_t(c[3])});
   R.layoutLengthError = L.maxEdgeLengthError;
-  if (options.requireValidLayout && (L.invertedTriangles > 0 || L.boundaryCrossings > 0 || !(L.maxEdgeLengthError <= 1e-3))) {
+  if (L.invertedTriangles > 0 || L.boundaryCrossings > 0 || !(L.maxEdgeLengthError <= 1e-3)) {
     const std::string why = scaleDiagnosis(T, u, fo.boundary);
-    fail(Code::NumericalFailure, Stage::Flatten,
-         "flatten: the layout has " + std::to_string(L.invertedTriangles) + " inverted triangles, " +
-             std::to_string(L.boundaryCrossings) + " boundary crossings and a relative edge length error of " +
-             std::to_string(L.maxEdgeLengthError) + ": " +
-             (why.empty() ? std::string("the area distortion may be too large for double precision: try the free boundary or split the patch") : why));
+    R.invalidLayout = "flatten: the layout has " + std::to_string(L.invertedTriangles) + " inverted triangles, " +
+                      std::to_string(L.boundaryCrossings) + " boundary crossings and a relative edge length error of " +
+                      std::to_string(L.maxEdgeLengthError) + ": " +
+                      (why.empty() ? std::string("the area distortion may be too large for double precision: try the free boundary or split the patch") : why);
+    if (options.requireValidLayout) fail(Code::NumericalFailure, Stage::Flatten, R.invalidLayout);
   }
 
   out.uv = L.xy;

@@ -3,7 +3,9 @@
 // the exact pull-back to the input surface.
 #pragma once
 
+#include <array>
 #include <cstdint>
+#include <string>
 #include <memory>
 #include <utility>
 #include <vector>
@@ -52,6 +54,11 @@ struct FlattenReport {
   double gaussBonnetError = 0.0;      //!< |sum K - 2 pi chi|
   int invertedTriangles = 0;          //!< final intrinsic triangles with signed area <= 0 in the layout
   int boundaryCrossings = 0;          //!< intersecting boundary edge pairs in the layout (0: simple, disjoint)
+  //! Those pairs, each as its two edges' patch vertices (a0, a1, b0, b1).
+  std::vector<std::array<uint32_t, 4>> boundaryCrossingEdges;
+  //! Why the layout is not valid (inverted triangles, crossing boundary loops or edge lengths
+  //! off by more than 1e-3; the message the check throws with), "" when it is.
+  std::string invalidLayout;
   double layoutLengthError = 0.0;     //!< max relative edge length error of the layout
   //! Quasi-conformal ratio sigma_max / sigma_min of the affine map from each input triangle (3D)
   //! to the triangle of its vertices' uv. An estimate: the true map is projective per overlay

@@ -63,8 +63,8 @@ bool segmentsIntersect(const double* a, const double* b, const double* c, const 
 }
 }  // namespace
 
-int countSegmentCrossings(const std::vector<double>& xy, const std::vector<std::pair<int, int>>& seg) {
-  if (seg.size() < 2) return 0;
+std::vector<std::pair<int, int>> segmentCrossings(const std::vector<double>& xy, const std::vector<std::pair<int, int>>& seg) {
+  if (seg.size() < 2) return {};
   double lo[2] = {1e300, 1e300}, hi[2] = {-1e300, -1e300};
   for (const auto& s : seg)
     for (int v : {s.first, s.second})
@@ -93,7 +93,8 @@ int countSegmentCrossings(const std::vector<double>& xy, const std::vector<std::
           hits.emplace_back(std::min(cell[p], cell[q]), std::max(cell[p], cell[q]));
       }
   std::sort(hits.begin(), hits.end());
-  return int(std::unique(hits.begin(), hits.end()) - hits.begin());
+  hits.erase(std::unique(hits.begin(), hits.end()), hits.end());
+  return hits;
 }
 
 std::string scaleDiagnosis(const IT& T, const std::vector<double>& u, BoundaryCondition boundary) {
@@ -177,7 +178,9 @@ LayoutResult layoutFlat(const IT& T, const std::vector<double>& u) {
   std::vector<std::pair<int, int>> seg;
   for (const auto& loop : T.loops)
     for (size_t i = 0; i < loop.size(); ++i) seg.emplace_back(loop[i], loop[(i + 1) % loop.size()]);
-  R.boundaryCrossings = countSegmentCrossings(R.xy, seg);
+  for (const auto& [i, j] : segmentCrossings(R.xy, seg))
+    R.crossingEdges.push_back({seg[i].first, seg[i].second, seg[j].first, seg[j].second});
+  R.boundaryCrossings = int(R.crossingEdges.size());
   return R;
 }
 

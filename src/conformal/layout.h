@@ -1,7 +1,9 @@
 // conformesh — isometric layout of a flat intrinsic triangulation in the plane, and its checks.
 #pragma once
 
+#include <array>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "conformal/intrinsic_triangulation.h"
@@ -14,6 +16,8 @@ struct LayoutResult {
   int invertedTriangles = 0;        //!< faces with signed area <= 0
   double maxEdgeLengthError = 0.0;  //!< max relative |layout length - intrinsic length| over edges
   int boundaryCrossings = 0;        //!< pairs of boundary edges that intersect (0: loops simple, disjoint)
+  //! The intersecting pairs of boundary edges, each as its two edges' vertices (a0, a1, b0, b1).
+  std::vector<std::array<int, 4>> crossingEdges;
 };
 
 //! Lay out T with the metric u face by face, breadth-first from a central face (the face
@@ -35,8 +39,12 @@ LayoutResult layoutFlat(const IntrinsicTriangulation& T, const std::vector<doubl
 constexpr double kMinRelativeEdgeLength = 1e-12;
 std::string scaleDiagnosis(const IntrinsicTriangulation& T, const std::vector<double>& u, BoundaryCondition boundary);
 
-//! Count intersecting pairs among segments (a_k, b_k) (indices into xy), ignoring pairs that
-//! share an endpoint. Uniform grid; O(n) expected for boundary polygons.
-int countSegmentCrossings(const std::vector<double>& xy, const std::vector<std::pair<int, int>>& segments);
+//! The intersecting pairs among segments (a_k, b_k) (indices into xy), ignoring pairs that share
+//! an endpoint, as pairs of segment indices (i < j, sorted). Uniform grid; O(n) expected for
+//! boundary polygons.
+std::vector<std::pair<int, int>> segmentCrossings(const std::vector<double>& xy, const std::vector<std::pair<int, int>>& segments);
+inline int countSegmentCrossings(const std::vector<double>& xy, const std::vector<std::pair<int, int>>& segments) {
+  return int(segmentCrossings(xy, segments).size());
+}
 
 }  // namespace conformesh::conformal

@@ -228,14 +228,21 @@ struct Cutter {
   // parts are all disks wins, else the k = maxK partition is kept and its non-disk parts are
   // returned in `todo`.
   void partition(const std::vector<uint32_t>& region, uint32_t minK, uint32_t maxK, const PatchMesh* pm,
-                 std::vector<std::vector<uint32_t>>& done, std::vector<std::vector<uint32_t>>& todo) {
+                 std::vector<std::vector<uint32_t>>& done, std::vector<std::vector<uint32_t>>& todo,
+                 const std::vector<uint32_t>& seedFaces = {}) {
     for (uint32_t i = 0; i < region.size(); ++i) local[region[i]] = i;
+    std::vector<uint32_t> first = pm ? topologySeeds(*pm) : std::vector<uint32_t>{};
+    if (!pm) {
+      for (uint32_t f : seedFaces)
+        if (local[f] != kNone && std::find(first.begin(), first.end(), local[f]) == first.end()) first.push_back(local[f]);
+      if (first.size() < 2) first.clear();
+    }
     maxK = std::min<uint32_t>(maxK, uint32_t(region.size()));
     std::vector<uint32_t> label, cut;
     std::vector<std::vector<uint32_t>> parts;
     std::vector<uint8_t> disk;
     // the cuts tried are undone: the mask it sees stays
-    VoronoiSeeds voronoi(g, mask, region, local, pm ? topologySeeds(*pm) : std::vector<uint32_t>{});
+    VoronoiSeeds voronoi(g, mask, region, local, std::move(first));
     for (uint32_t k = std::min(minK, maxK); k <= maxK; ++k) {
       voronoi.growTo(k);
       label = voronoi.label;
@@ -284,33 +291,6 @@ struct Cutter {
     }
   }
 };
-
-// Patches: faces connected across edges that are not curve edges (seg.facePatch, seg.patches).
-void floodPatches(const EdgeGraph& g, Segmentation& seg) {
-  seg.facePatch.assign(g.faceCount, kNone);
-  seg.patches.clear();
-  std::vector<uint32_t> stack;
-  for (uint32_t f0 = 0; f0 < g.faceCount; ++f0) {
-    if (seg.facePatch[f0] != kNone) continue;
-    uint32_t p = uint32_t(seg.patches.size());
-    seg.patches.emplace_back();
-    seg.facePatch[f0] = p;
-    stack.push_back(f0);
-    while (!stack.empty()) {
-      uint32_t f = stack.back();
-      stack.pop_back();
-      seg.patches[p].push_back(f);
-      for (uint32_t e : g.faceEdges[f]) {
-        if (seg.isCurveEdge(e)) continue;
-        uint32_t o = g.edgeFaces[e][0] == f ? g.edgeFaces[e][1] : g.edgeFaces[e][0];
-        if (o != kNone && seg.facePatch[o] == kNone) {
-          seg.facePatch[o] = p;
-          stack.push_back(o);
-        }
-      }
-    }
-  }
-}
 
 // Merge patches narrower than minWidth into a neighbour (FeatureOptions::minPatchWidth). Width:
 // 2·area / perimeter, the width of a strip (a disk's radius, half a sliver triangle's height).
@@ -460,92 +440,6 @@ std::vector<double> featureWedgeAngles(const EdgeGraph& g, const Segmentation& s
   return out;
 }
 
-void rebuildCurves(const EdgeGraph& g, Segmentation& seg) {
-  const double turnLimit = seg.cornerTurnDeg * kPi / 180.0;
-  std::vector<uint32_t> valence(g.vertexCount, 0);
-  std::vector<std::array<uint32_t, 2>> twoEdges(g.vertexCount, {kNone, kNone});
-  for (uint32_t e = 0; e < g.edgeCount(); ++e) {
-    if (!seg.isCurveEdge(e)) continue;
-    for (uint32_t v : g.edgeVerts[e]) {
-      if (valence[v] < 2) twoEdges[v][valence[v]] = e;
-      ++valence[v];
-    }
-  }
-  seg.vertexCorner.assign(g.vertexCount, 0);
-  for (uint32_t v = 0; v < g.vertexCount; ++v) {
-    if (valence[v] == 0) continue;
-    if (valence[v] != 2) {
-      seg.vertexCorner[v] = 1;
-      continue;
-    }
-    uint32_t e1 = twoEdges[v][0], e2 = twoEdges[v][1];
-    if (seg.edgeKind[e1] != seg.edgeKind[e2]) {
-      seg.vertexCorner[v] = 1;
-      continue;
-    }
-    // a cut is ours and smooth: it has no corners of its own (the staircase of input edges it
-    // follows would otherwise put a corner, and so a forced output vertex, at every other step)
-    if (seg.edgeKind[e1] == EdgeKind::Cut) continue;
-    Vec3 a = g.positions[v] - g.positions[g.otherVertex(e1, v)];
-    Vec3 b = g.positions[g.otherVertex(e2, v)] - g.positions[v];
-    if (angleBetween(a, b) > turnLimit) seg.vertexCorner[v] = 1;
-  }
-  seg.curves.clear();
-  seg.edgeCurve.assign(g.edgeCount(), kNone);
-  auto nextEdge = [&](uint32_t v, uint32_t e) {
-    return twoEdges[v][0] == e ? twoEdges[v][1] : twoEdges[v][0];
-  };
-  auto trace = [&](uint32_t v, uint32_t e) {
-    Curve c;
-    c.kind = seg.edgeKind[e];
-    c.vertices.push_back(v);
-    for (uint32_t guard = 0; guard <= g.edgeCount(); ++guard) {
-      seg.edgeCurve[e] = uint32_t(seg.curves.size());
-      c.edges.push_back(e);
-      c.length += g.edgeLength(e);
-      v = g.otherVertex(e, v);
-      c.vertices.push_back(v);
-      if (seg.vertexCorner[v]) break;
-      e = nextEdge(v, e);
-    }
-    seg.curves.push_back(std::move(c));
-  };
-  for (uint32_t v = 0; v < g.vertexCount; ++v) {
-    if (!seg.vertexCorner[v]) continue;
-    for (uint32_t k = g.vertexEdgeStart[v]; k < g.vertexEdgeStart[v + 1]; ++k) {
-      uint32_t e = g.vertexEdgeIds[k];
-      if (seg.isCurveEdge(e) && seg.edgeCurve[e] == kNone) trace(v, e);
-    }
-  }
-  // closed loops without a corner: two artificial corners, at the start and half the length
-  for (uint32_t e0 = 0; e0 < g.edgeCount(); ++e0) {
-    if (!seg.isCurveEdge(e0) || seg.edgeCurve[e0] != kNone) continue;
-    uint32_t v = g.edgeVerts[e0][0], e = e0;
-    std::vector<uint32_t> verts{v};
-    std::vector<double> arc{0.0};
-    for (uint32_t guard = 0; guard <= g.edgeCount(); ++guard) {
-      arc.push_back(arc.back() + g.edgeLength(e));
-      v = g.otherVertex(e, v);
-      if (v == verts[0]) break;
-      verts.push_back(v);
-      e = nextEdge(v, e);
-    }
-    uint32_t half = 1;
-    for (uint32_t i = 1; i < verts.size(); ++i)
-      if (std::abs(arc[i] - 0.5 * arc.back()) < std::abs(arc[half] - 0.5 * arc.back())) half = i;
-    seg.vertexCorner[verts[0]] = 2;
-    seg.vertexCorner[verts[half]] = 2;
-    trace(verts[0], e0);
-    uint32_t back = twoEdges[verts[0]][0] == e0 ? twoEdges[verts[0]][1] : twoEdges[verts[0]][0];
-    if (seg.edgeCurve[back] == kNone) trace(verts[0], back);
-  }
-  floodPatches(g, seg);
-  for (auto& c : seg.curves) {
-    const auto& fs = g.edgeFaces[c.edges[0]];
-    c.patches = {fs[0] == kNone ? kNone : seg.facePatch[fs[0]], fs[1] == kNone ? kNone : seg.facePatch[fs[1]]};
-  }
-}
-
 Segmentation segment(const EdgeGraph& g, const FeatureOptions& options, const ProgressFn& progress) {
   if (!(options.featureAngleDeg >= 0 && options.featureAngleDeg <= 180))
     fail(Code::InvalidArgument, Stage::Segment, "featureAngle must be in [0, 180] degrees");
@@ -611,12 +505,32 @@ Segmentation segment(const EdgeGraph& g, const FeatureOptions& options, const Pr
   return seg;
 }
 
-bool splitPatch(const EdgeGraph& g, Segmentation& seg, uint32_t p, uint32_t parts) {
+bool splitPatch(const EdgeGraph& g, Segmentation& seg, uint32_t p, uint32_t parts, const std::vector<uint32_t>& seeds) {
   if (p >= seg.patches.size() || seg.patches[p].size() < 2) return false;
   const std::vector<uint32_t> region = seg.patches[p];  // the new cuts and their ends lie in it
-  Cutter cutter(g, seg, 1u << 30);
+  const std::vector<EdgeKind> kinds = seg.edgeKind;
+  const uint32_t cuts = seg.cutEdgeCount;
   std::vector<std::vector<uint32_t>> done, todo;
-  cutter.partition(seg.patches[p], std::max<uint32_t>(2, parts), 8, nullptr, done, todo);
+  // the farthest points first; when they leave the seeds in one part, the seeds themselves
+  const auto together = [&] {
+    for (const auto* parts : {&done, &todo})
+      for (const auto& part : *parts)
+        if (std::count_if(seeds.begin(), seeds.end(), [&](uint32_t f) { return std::find(part.begin(), part.end(), f) != part.end(); }) >= 2)
+          return true;
+    return false;
+  };
+  Cutter farthest(g, seg, 1u << 30);
+  farthest.partition(region, std::max<uint32_t>(2, parts), 8, nullptr, done, todo);
+  const bool seeded = seeds.size() >= 2 && together();
+  if (seeded) {
+    seg.edgeKind = kinds;
+    seg.cutEdgeCount = cuts;
+    done.clear();
+    todo.clear();
+  }
+  Cutter apart(g, seg, 1u << 30);
+  if (seeded) apart.partition(region, std::max<uint32_t>(2, parts), 8, nullptr, done, todo, seeds);
+  Cutter& cutter = seeded ? apart : farthest;
   uint32_t count = 0;
   while (!todo.empty()) {
     auto r = std::move(todo.back());

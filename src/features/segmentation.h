@@ -59,6 +59,7 @@ struct Curve {
   std::vector<uint32_t> edges;     //!< edges[i] joins vertices[i] and vertices[i+1]
   std::array<uint32_t, 2> patches{kNone, kNone};  //!< patches on the two sides (kNone: none)
   double length = 0;  //!< 3D arc length
+  uint64_t order = 0;  //!< the order rebuildCurves traces it in (its ids follow it)
 };
 
 struct Segmentation {
@@ -68,6 +69,9 @@ struct Segmentation {
   std::vector<Curve> curves;
   std::vector<uint32_t> facePatch;              //!< per input face
   std::vector<std::vector<uint32_t>> patches;   //!< faces of each patch (each a disk)
+  //! The edge kinds the curves and patches were built from (empty: not built by rebuildCurves),
+  //! so that a rebuild redoes only what changed since.
+  std::vector<EdgeKind> builtKind;
   uint32_t sharpEdgeCount = 0;  //!< feature edges from the dihedral angle or the user
   uint32_t cutEdgeCount = 0;
   double cornerTurnDeg = 50.0;  //!< the option used, kept for rebuildCurves after splits
@@ -87,9 +91,11 @@ Segmentation segment(const EdgeGraph& g, const FeatureOptions& options, const Pr
 
 //! Split patch `p` into at least two disks by a geodesic Voronoi partition (k farthest-point
 //! seeds, multi-source Dijkstra on the face graph) and rebuild curves, corners and patch ids.
-//! Used when a patch's conformal scale factor varies too much. Returns false when the patch is
-//! too small to split (fewer than 2 faces).
-bool splitPatch(const EdgeGraph& g, Segmentation& seg, uint32_t p, uint32_t parts = 2);
+//! Used when a patch's conformal scale factor varies too much. `seeds` (input faces of p, two or
+//! more; else ignored): when the farthest points' partition leaves two of them in one part, the
+//! seeds are the first seeds instead (the farthest points after them), so the cells keep them
+//! apart. Returns false when the patch is too small to split (fewer than 2 faces).
+bool splitPatch(const EdgeGraph& g, Segmentation& seg, uint32_t p, uint32_t parts = 2, const std::vector<uint32_t>& seeds = {});
 
 //! Per input vertex: the smallest wedge (radians) between the input's own feature and boundary
 //! edges around it, the sum of the face angles between two consecutive such edges (cuts do not
@@ -104,7 +110,13 @@ std::vector<double> featureWedgeAngles(const EdgeGraph& g, const Segmentation& s
 //! no other step is left. Marks the new edges Cut; the caller rebuilds the curves.
 void extendDanglingCurves(const EdgeGraph& g, Segmentation& seg);
 
-//! Recompute curves, corners and patches from seg.edgeKind (after edges were marked).
+//! Recompute curves, corners and patches from seg.edgeKind (after edges were marked). Only the
+//! curves and patches beside the edges changed since the last rebuild are redone; the result,
+//! ids included, is the same as a rebuild from scratch (features/rebuild_curves.cpp).
 void rebuildCurves(const EdgeGraph& g, Segmentation& seg);
+
+//! Patches only: the faces connected across edges that are not curve edges (seg.facePatch,
+//! seg.patches, numbered by their smallest face); the curves are left as they are.
+void floodPatches(const EdgeGraph& g, Segmentation& seg);
 
 }  // namespace conformesh::features

@@ -141,7 +141,7 @@ bool applyCuts(const EdgeGraph& g, Segmentation& seg, uint32_t p, const std::vec
 
 // cutThroughSink and cutThroughSpike: `balanced` asks the second path to leave at least 3/8 of
 // the angle sum away from the first, else it leaves through the most opposite neighbour.
-bool cutThroughVertex(const EdgeGraph& g, Segmentation& seg, uint32_t p, uint32_t sink, double minWedge, bool balanced) {
+bool cutThroughVertex(const EdgeGraph& g, Segmentation& seg, uint32_t p, uint32_t sink, double minWedge, bool balanced, double minDepth) {
   if (p >= seg.patches.size() || sink >= g.vertexCount || onCurve(g, seg, sink)) return false;
   double theta = 0;
   const auto ring = ringAngles(g, sink, theta);
@@ -150,6 +150,11 @@ bool cutThroughVertex(const EdgeGraph& g, Segmentation& seg, uint32_t p, uint32_
   for (const auto& r : ring) all.push_back(r.first);
   const std::vector<uint32_t> first = pathToBorder(g, seg, p, sink, all, {});
   if (first.size() < 2) return false;
+  if (minDepth > 0) {  // the nearest border is the first path's end
+    double depth = 0;
+    for (size_t i = 0; i + 1 < first.size(); ++i) depth += norm(g.positions[first[i + 1]] - g.positions[first[i]]);
+    if (depth < minDepth) return false;
+  }
   double a1 = 0;
   for (const auto& [w, a] : ring)
     if (w == first[1]) a1 = a;
@@ -172,12 +177,12 @@ bool cutThroughVertex(const EdgeGraph& g, Segmentation& seg, uint32_t p, uint32_
 
 }  // namespace
 
-bool cutThroughSink(const EdgeGraph& g, Segmentation& seg, uint32_t p, uint32_t sink, double minWedge) {
-  return cutThroughVertex(g, seg, p, sink, minWedge, true);
+bool cutThroughSink(const EdgeGraph& g, Segmentation& seg, uint32_t p, uint32_t sink, double minWedge, double minDepth) {
+  return cutThroughVertex(g, seg, p, sink, minWedge, true, minDepth);
 }
 
 bool cutThroughSpike(const EdgeGraph& g, Segmentation& seg, uint32_t p, uint32_t tip, double minWedge) {
-  return cutThroughVertex(g, seg, p, tip, minWedge, false);
+  return cutThroughVertex(g, seg, p, tip, minWedge, false, 0.0);
 }
 
 bool cutThroughWideCorner(const EdgeGraph& g, Segmentation& seg, uint32_t p, uint32_t v, double minWedge) {

@@ -27,8 +27,10 @@ namespace conformesh::features {
 //! keeps at least `minWedge` radians). The edges become Cut edges; the junction repairs of a
 //! split follow (features/cut_junctions.h, close_junctions.h), over the patch only. False, with
 //! the segmentation as it was, when there is no such pair of paths or the patch would not end
-//! up as two or more disks, or the segmentation with no more patches than before. O(patch) plus the rebuilds of the curves.
-bool cutThroughSink(const EdgeGraph& g, Segmentation& seg, uint32_t p, uint32_t sink, double minWedge);
+//! up as two or more disks, or the segmentation with no more patches than before; also false when
+//! the sink is nearer the border than `minDepth` (along the first path). O(patch) plus the
+//! rebuilds of the curves.
+bool cutThroughSink(const EdgeGraph& g, Segmentation& seg, uint32_t p, uint32_t sink, double minWedge, double minDepth = 0);
 
 //! cutThroughSink for the tip of a spike (an interior vertex whose angle sum is far below 2π: a
 //! horn, a claw): the second path leaves the tip through the neighbour most opposite the first

@@ -24,6 +24,14 @@ constexpr size_t kMinSplitFaces = 2;
 // the sink as a quality mesh can, far slower than the planar size shrinks there).
 constexpr double kSinkScaleRatio = 4.0;
 
+// A sink nearer the patch's border than this many output edges (the sizing there) is not cut
+// through: the border already holds the scale that close, and the cut would only shave off a
+// strip narrower than two output edges, which the refinement grades into (docs/decisions/0007).
+// man: 16 of its 38 sink cuts were 0.3-1.5 edges deep, each shaving 2-50 faces off one patch
+// while its spread stayed at 7-10; armadillo's, elk's, face's and spot's were 5 or more deep
+// (docs/decisions/0039).
+constexpr double kSinkDepth = 2.0;
+
 // When a patch's flattening fails, a vertex whose 3D angle is within this of 2π the wrong way is
 // cut through (features/sink_cuts.h) rather than left inside a part of a split, which fails
 // again for the same reason however small: a border vertex whose wedge exceeds 2π − kConeGap
@@ -94,6 +102,7 @@ struct Flattening {
   size_t next = 0;           // the boundary conditions tried: order[0, next)
   bool flattened = false;    // by order[next - 1]
   bool splitAsked = false;   // its first condition failed and the patch is big enough to split
+  std::vector<uint32_t> splitSeeds;  // input faces a split keeps apart: the first condition's worst crossing
   bool scaleSplit = false;   // flattened, with scale factors spreading more than maxScaleRatio
   double scaleRatio = 1;     // flattened: the spread of its scale factors (max / min)
   std::string lastError;
@@ -144,16 +153,46 @@ uint64_t curveStateHash(const F::Segmentation& seg) {
 // neighbour) and brings back a segmentation seen after such a split before is undone: the
 // patch's next split would trade the same faces back and forth without end. `lateral` keeps
 // the states those splits made.
-bool splitOnce(Surface& surf, uint32_t p, std::set<uint64_t>& lateral) {
+bool splitOnce(Surface& surf, uint32_t p, std::set<uint64_t>& lateral, const std::vector<uint32_t>& seeds) {
   const size_t before = surf.seg.patches.size();
   const std::vector<F::EdgeKind> kinds = surf.seg.edgeKind;
   const uint32_t cuts = surf.seg.cutEdgeCount;
-  if (!F::splitPatch(surf.g, surf.seg, p)) return false;
+  if (!F::splitPatch(surf.g, surf.seg, p, 2, seeds)) return false;
   if (surf.seg.patches.size() > before || lateral.insert(curveStateHash(surf.seg)).second) return true;
   surf.seg.edgeKind = kinds;
   surf.seg.cutEdgeCount = cuts;
   F::rebuildCurves(surf.g, surf.seg);
   return false;
+}
+
+// The input faces beside the two boundary edges of the crossing of a failed layout that lie
+// farthest apart along the border (most often two sides of a cut, or two cuts, that the flat map
+// brings together): splitPatch parts them when the farthest points do not. A split that leaves
+// them in one part keeps the overlap there: man's largest failing patch was split seven times
+// over around the same crossing. Empty without a crossing.
+std::vector<uint32_t> crossingSeeds(const F::PatchMesh& pm, const FlattenReport& r) {
+  const auto& T = pm.mesh.triangles;
+  // border position (loop, index) and face of the border edge a-b
+  const auto find = [&](uint32_t a, uint32_t b, size_t& loop, size_t& at) {
+    for (loop = 0; loop < pm.boundaryLoops.size(); ++loop)
+      for (at = 0; at < pm.boundaryLoops[loop].size(); ++at) {
+        const auto& h = pm.boundaryLoops[loop][at];
+        const uint32_t x = T[3 * h.face + h.corner], y = T[3 * h.face + (h.corner + 1) % 3];
+        if ((x == a && y == b) || (x == b && y == a)) return h.face;
+      }
+    return kNone;
+  };
+  std::vector<uint32_t> seeds;
+  size_t widest = 0;
+  for (const auto& c : r.boundaryCrossingEdges) {
+    size_t la, ia, lb, ib;
+    const uint32_t fa = find(c[0], c[1], la, ia), fb = find(c[2], c[3], lb, ib);
+    if (fa == kNone || fb == kNone || fa == fb) continue;
+    const size_t n = pm.boundaryLoops[la].size();
+    const size_t gap = la != lb ? n : std::min(ia > ib ? ia - ib : ib - ia, n - (ia > ib ? ia - ib : ib - ia));
+    if (gap > widest) widest = gap, seeds = {pm.faceInput[fa], pm.faceInput[fb]};
+  }
+  return seeds;
 }
 
 // Try the boundary conditions order[f.next...] on f.w->pm until one works; stop after a failure of
@@ -172,7 +211,9 @@ void tryConditions(const F::Segmentation& seg, const std::vector<BoundaryConditi
       fo.corners = f.corners;
     }
     try {
+      fo.requireValidLayout = bc != order.front();  // the first condition's crossings seed a split
       f.w->flat = flatten(f.w->pm.mesh, fo);
+      if (!f.w->flat.report.invalidLayout.empty()) fail(Code::NumericalFailure, Stage::Flatten, f.w->flat.report.invalidLayout);
       f.flattened = true;
     } catch (const Error& e) {
       if (e.code() == Code::Cancelled) throw;
@@ -181,6 +222,7 @@ void tryConditions(const F::Segmentation& seg, const std::vector<BoundaryConditi
       // developable and keep the least distorting map; split while the patch is big enough
       if (bc == order.front() && faces >= kMinSplitFaces) {
         f.splitAsked = true;
+        f.splitSeeds = crossingSeeds(f.w->pm, f.w->flat.report);
         return;
       }
     }
@@ -264,9 +306,17 @@ Patches flattenPatches(Surface& surf, const RemeshOptions& opt, const Progress& 
   std::map<std::vector<uint32_t>, std::unique_ptr<PatchWork>> cache;
   // flattenings made after the first split of a round, checked before use in the next (stillValid)
   std::map<std::vector<uint32_t>, Flattening> spare;
-  auto keyOf = [](std::vector<uint32_t> faces) {
-    std::sort(faces.begin(), faces.end());
-    return faces;
+  // each patch's sorted faces, by its smallest face (the first listed): a patch the splits left
+  // alone keeps its key from round to round instead of being sorted again
+  std::map<uint32_t, std::pair<std::vector<uint32_t>, std::vector<uint32_t>>> keys;
+  auto keyOf = [&keys](const std::vector<uint32_t>& faces) -> const std::vector<uint32_t>& {
+    auto& [listed, sorted] = keys[faces[0]];
+    if (listed != faces) {
+      listed = faces;
+      sorted = faces;
+      std::sort(sorted.begin(), sorted.end());
+    }
+    return sorted;
   };
   const std::vector<BoundaryCondition> order = conditionOrder(opt.boundary);
   // Patches are flattened a window ahead of the patch order. A split ends the round, and the
@@ -313,7 +363,7 @@ Patches flattenPatches(Surface& surf, const RemeshOptions& opt, const Progress& 
     std::vector<uint32_t> todo;
     std::vector<Flattening> made;
     for (uint32_t p = 0; p < surf.seg.patches.size(); ++p) {
-      auto key = keyOf(surf.seg.patches[p]);
+      const auto& key = keyOf(surf.seg.patches[p]);
       if (cache.count(key)) continue;
       todo.push_back(p);
       auto it = spare.find(key);
@@ -361,7 +411,7 @@ Patches flattenPatches(Surface& surf, const RemeshOptions& opt, const Progress& 
           continue;
         }
         if (f.splitAsked) {
-          if (splitOnce(surf, p, lateral)) {
+          if (splitOnce(surf, p, lateral, f.splitSeeds)) {
             ++rep.patchSplitsForScale;
             rep.warnings.push_back("patch split after its first boundary condition failed: " + f.lastError);
             split = true;
@@ -375,7 +425,7 @@ Patches flattenPatches(Surface& surf, const RemeshOptions& opt, const Progress& 
         if (!f.flattened) {
           // every boundary condition failed (a layout that overlaps itself or a flow that stalls):
           // split the patch and retry
-          if (faces.size() < kMinSplitFaces || !splitOnce(surf, p, lateral))
+          if (faces.size() < kMinSplitFaces || !splitOnce(surf, p, lateral, f.splitSeeds))
             fail(Code::NumericalFailure, Stage::Flatten, "patch " + std::to_string(p) + " could not be flattened: " + f.lastError);
           ++rep.patchSplitsForScale;
           rep.warnings.push_back("patch split after a flattening failure: " + f.lastError);
@@ -395,13 +445,14 @@ Patches flattenPatches(Surface& surf, const RemeshOptions& opt, const Progress& 
           split = true;
           continue;
         }
-        if (f.scaleRatio > kSinkScaleRatio &&
-            F::cutThroughSink(surf.g, surf.seg, p, scaleSink(f.w->pm, f.w->flat.u), minWedge)) {
+        if (const uint32_t sink = scaleSink(f.w->pm, f.w->flat.u);
+            f.scaleRatio > kSinkScaleRatio && sink != kNone &&
+            F::cutThroughSink(surf.g, surf.seg, p, sink, minWedge, kSinkDepth * surf.sizing.h[sink])) {
           ++rep.sinkCuts;
           split = true;
           continue;
         }
-        if (f.scaleSplit && faces.size() >= kMinSplitFaces && splitOnce(surf, p, lateral)) {
+        if (f.scaleSplit && faces.size() >= kMinSplitFaces && splitOnce(surf, p, lateral, {})) {
           ++rep.patchSplitsForScale;
           split = true;
           continue;

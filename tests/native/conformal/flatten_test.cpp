@@ -7,6 +7,7 @@
 #include "conformesh.h"
 #include "planar/predicates.h"
 #include "test_meshes.h"
+#include "features/test_shapes.h"
 
 #include <fstream>
 #include <iterator>
@@ -229,6 +230,32 @@ TEST_CASE("flatten data: camelhead needles (min angle 0.55 deg) converge with fl
     std::printf("camelhead without flips: %s: %s\n", codeName(e.code()), e.what());
     CHECK((e.code() == Code::NotConverged || e.code() == Code::IterationLimit));
   }
+}
+
+TEST_CASE("flatten: a ramp of one and a half turns lays out overlapping itself; the report names the crossing edges") {
+  const MeshBuffers M = testshapes::helicoidStrip(1.5, 1.0, 2.0, 0.2, 72, 6);
+  FlattenOptions o;
+  o.boundary = BoundaryCondition::Free;
+  o.pullback = false;
+  CHECK_THROWS_AS(flatten(M, o), Error);
+  o.requireValidLayout = false;
+  const FlatPatch f = flatten(M, o);
+  CHECK(f.report.boundaryCrossings > 0);
+  CHECK(!f.report.invalidLayout.empty());
+  REQUIRE(f.report.boundaryCrossingEdges.size() == size_t(f.report.boundaryCrossings));
+  for (const auto& c : f.report.boundaryCrossingEdges) {
+    const double* a0 = &f.uv[2 * c[0]];
+    const double* a1 = &f.uv[2 * c[1]];
+    const double* b0 = &f.uv[2 * c[2]];
+    const double* b1 = &f.uv[2 * c[3]];
+    // the two edges cross: each one's ends lie on either side of the other's line
+    CHECK(planar::orient2d(a0, a1, b0) * planar::orient2d(a0, a1, b1) <= 0);
+    CHECK(planar::orient2d(b0, b1, a0) * planar::orient2d(b0, b1, a1) <= 0);
+  }
+  // under one turn the same ramp lays out
+  const FlatPatch g = flatten(testshapes::helicoidStrip(0.75, 1.0, 2.0, 0.2, 36, 6), o);
+  CHECK(g.report.boundaryCrossings == 0);
+  CHECK(g.report.invalidLayout.empty());
 }
 
 TEST_CASE("flatten: corner-preserving boundary makes a square of a bent square patch") {

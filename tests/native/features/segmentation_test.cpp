@@ -9,6 +9,7 @@
 #include <fstream>
 #include <iterator>
 #include <map>
+#include <random>
 #include <set>
 #include <string>
 
@@ -827,4 +828,100 @@ TEST_CASE("features: above a 30-degree bound the outlier tests look at the same 
   const std::vector<uint32_t> at30 = features(30);
   CHECK(std::count(at30.begin(), at30.end(), g.findEdge(a, b)) == 1);  // its edge on the sheet is a crease
   CHECK(features(35) == at30);
+}
+
+namespace {
+// s as rebuildCurves left it is what a rebuild from scratch gives, ids and orders included.
+void checkSameAsScratch(const EdgeGraph& g, const Segmentation& s) {
+  Segmentation f = s;
+  f.builtKind.clear();
+  rebuildCurves(g, f);
+  REQUIRE(s.curves.size() == f.curves.size());
+  for (size_t c = 0; c < s.curves.size(); ++c) {
+    const Curve &a = s.curves[c], &b = f.curves[c];
+    CHECK((a.vertices == b.vertices && a.edges == b.edges && a.kind == b.kind && a.patches == b.patches &&
+           a.length == b.length && a.order == b.order));
+  }
+  CHECK(s.edgeCurve == f.edgeCurve);
+  CHECK(s.vertexCorner == f.vertexCorner);
+  CHECK(s.facePatch == f.facePatch);
+  CHECK(s.patches == f.patches);
+}
+}  // namespace
+
+TEST_CASE("features: rebuildCurves after local changes gives what a rebuild from scratch gives, ids included (cylinder loops, man)") {
+  std::ifstream in(std::string(CONFORMESH_DATA_DIR) + "/man.off", std::ios::binary);
+  REQUIRE(in);
+  const std::vector<uint8_t> bytes((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  for (const MeshBuffers& mesh : {testshapes::cylinder(24, 8, 4), readMesh(bytes).mesh}) {
+    const EdgeGraph g = buildEdgeGraph(mesh);
+    FeatureOptions fo;
+    fo.minFeatureLength = 0.02 * boundingBoxDiagonal(g);
+    fo.junctionScale = 0.01 * boundingBoxDiagonal(g);
+    Segmentation s = segment(g, fo);
+    REQUIRE(s.builtKind == s.edgeKind);  // built: the next rebuild is a local one
+    checkSameAsScratch(g, s);
+    for (EdgeKind& k : s.edgeKind)  // the cuts gone: the cylinder's circles close without a corner
+      if (k == EdgeKind::Cut) k = EdgeKind::None;
+    rebuildCurves(g, s);
+    checkSameAsScratch(g, s);
+    const size_t loops = size_t(std::count(s.vertexCorner.begin(), s.vertexCorner.end(), 2));
+    std::mt19937 rng(7);
+    for (int step = 0; step < 80; ++step) {
+      // a walk of 1-6 edges from a random vertex, each edge given a random kind (boundaries stay)
+      uint32_t v = uint32_t(rng() % g.vertexCount);
+      const uint32_t length = 1 + uint32_t(rng() % 6);
+      for (uint32_t i = 0; i < length; ++i) {
+        const uint32_t k = g.vertexEdgeStart[v] + uint32_t(rng() % (g.vertexEdgeStart[v + 1] - g.vertexEdgeStart[v]));
+        const uint32_t e = g.vertexEdgeIds[k];
+        if (!g.isBoundary(e)) s.edgeKind[e] = std::array<EdgeKind, 3>{EdgeKind::None, EdgeKind::Feature, EdgeKind::Cut}[rng() % 3];
+        v = g.otherVertex(e, v);
+      }
+      const Segmentation before = s;
+      rebuildCurves(g, s);
+      checkSameAsScratch(g, s);
+      if (step % 10 == 9) {  // undone: back to the curves and patches before
+        const std::vector<EdgeKind> kinds = s.edgeKind;
+        s.edgeKind = before.builtKind;
+        rebuildCurves(g, s);
+        checkSameAsScratch(g, s);
+        CHECK(s.patches == before.patches);
+        s.edgeKind = kinds;
+        rebuildCurves(g, s);
+      }
+    }
+    // patch splits, as the flattening makes them
+    for (int i = 0; i < 4; ++i) {
+      uint32_t largest = 0;
+      for (uint32_t p = 0; p < s.patches.size(); ++p)
+        if (s.patches[p].size() > s.patches[largest].size()) largest = p;
+      REQUIRE(splitPatch(g, s, largest));
+      checkSameAsScratch(g, s);
+    }
+    if (mesh.vertexCount() < 1000) CHECK(loops > 0);  // the cylinder's circles are loops without a corner
+  }
+}
+
+TEST_CASE("features: splitPatch with seed faces puts them in different parts, where farthest points keep neighbours together") {
+  const EdgeGraph g = buildEdgeGraph(testshapes::square(8));
+  Segmentation s = segment(g, FeatureOptions{});
+  REQUIRE(s.patches.size() == 1);
+  // two faces beside one inner edge near a corner of the square
+  uint32_t a = kNone, b = kNone;
+  for (uint32_t e = 0; e < g.edgeCount() && a == kNone; ++e)
+    if (!g.isBoundary(e)) a = g.edgeFaces[e][0], b = g.edgeFaces[e][1];
+  REQUIRE(a != kNone);
+  Segmentation far = s, apart = s;
+  REQUIRE(splitPatch(g, far, 0));
+  CHECK(far.facePatch[a] == far.facePatch[b]);  // the farthest points lie at opposite corners
+  REQUIRE(splitPatch(g, s, 0, 2, {a, b}));
+  CHECK(s.facePatch[a] != s.facePatch[b]);
+  checkPatchesAreDisks(g, s);
+  // seeds the farthest points already part: their split as it is
+  uint32_t c = kNone;
+  for (uint32_t f = 0; f < g.faceCount && c == kNone; ++f)
+    if (far.facePatch[f] != far.facePatch[a]) c = f;
+  REQUIRE(c != kNone);
+  REQUIRE(splitPatch(g, apart, 0, 2, {a, c}));
+  CHECK(apart.edgeKind == far.edgeKind);
 }

@@ -57,6 +57,34 @@ TEST_CASE("sink cuts: the bump is cut in two disks through its tip, leaving it i
   CHECK(side[1] >= 0.375 * total - 1e-12);
 }
 
+TEST_CASE("sink cuts: a sink nearer the border than minDepth is not cut through; deeper ones are") {
+  const EdgeGraph g = buildEdgeGraph(testshapes::bump(2.0, 0.3));
+  Segmentation s = segment(g, FeatureOptions{});
+  REQUIRE(s.patches.size() == 1);
+  const uint32_t tip = 0;  // the centre of the bump
+  // its depth: the shortest path of edges from the tip to the border
+  std::vector<double> dist(g.vertexCount, INFINITY);
+  dist[tip] = 0;
+  for (bool changed = true; changed;) {
+    changed = false;
+    for (uint32_t e = 0; e < g.edgeCount(); ++e)
+      for (int k = 0; k < 2; ++k) {
+        const uint32_t a = g.edgeVerts[e][k], b = g.edgeVerts[e][1 - k];
+        if (dist[a] + g.edgeLength(e) < dist[b]) dist[b] = dist[a] + g.edgeLength(e), changed = true;
+      }
+  }
+  double depth = INFINITY;
+  for (uint32_t e = 0; e < g.edgeCount(); ++e)
+    if (s.edgeKind[e] == EdgeKind::Boundary) depth = std::min({depth, dist[g.edgeVerts[e][0]], dist[g.edgeVerts[e][1]]});
+  REQUIRE(std::isfinite(depth));
+  const std::vector<EdgeKind> before = s.edgeKind;
+  CHECK_FALSE(cutThroughSink(g, s, 0, tip, kPi / 3, 1.01 * depth));
+  CHECK(s.edgeKind == before);
+  CHECK(s.patches.size() == 1);
+  CHECK(cutThroughSink(g, s, 0, tip, kPi / 3, 0.99 * depth));
+  CHECK(s.patches.size() == 2);
+}
+
 TEST_CASE("sink cuts: a finger is remeshed as two patches with the count its sizing asks for") {
   // Flattened whole, the bump's scale sinks towards its tip by more than the refinement can
   // follow (a low bump: 1.18 times the estimate in one patch; taller ones were split 3 to 4

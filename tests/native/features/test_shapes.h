@@ -115,6 +115,24 @@ inline MeshBuffers torus(int m, int n, double R = 1.0, double r = 0.35) {
   return b.m;
 }
 
+//! A ramp winding `turns` times round the z axis (radii r0..r1, rising `pitch` per turn): an
+//! open strip of n × m quads. Above one turn its flat map, a sector of the annulus, overlaps itself.
+inline MeshBuffers helicoidStrip(double turns, double r0, double r1, double pitch, int n, int m) {
+  MeshBuffers M;
+  for (int i = 0; i <= n; ++i)
+    for (int j = 0; j <= m; ++j) {
+      const double t = turns * 2 * M_PI * i / n, r = r0 + (r1 - r0) * j / m;
+      M.positions.insert(M.positions.end(), {r * std::cos(t), r * std::sin(t), pitch * t / (2 * M_PI)});
+    }
+  auto id = [&](int i, int j) { return uint32_t(i * (m + 1) + j); };
+  for (int i = 0; i < n; ++i)
+    for (int j = 0; j < m; ++j) {
+      M.triangles.insert(M.triangles.end(), {id(i, j), id(i + 1, j), id(i + 1, j + 1)});
+      M.triangles.insert(M.triangles.end(), {id(i, j), id(i + 1, j + 1), id(i, j + 1)});
+    }
+  return M;
+}
+
 //! A flat square [0,1]^2 grid (open, one boundary loop).
 inline MeshBuffers square(int n) {
   Builder b;

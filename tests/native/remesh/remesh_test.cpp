@@ -364,3 +364,17 @@ TEST_CASE("remesh: a wedge above the bound beside an exempt one at the same corn
     CHECK(inWedge > 10);
   }
 }
+
+TEST_CASE("remesh: a ramp winding two and a half turns is split where its flat map overlaps, the bound held") {
+  // Flattened whole, the ramp's border crosses itself a turn apart; the splits go on until no
+  // part winds a full turn.
+  const MeshBuffers ramp = testshapes::helicoidStrip(2.5, 1.0, 2.0, 0.3, 150, 8);
+  RemeshOptions o;
+  o.threads = 1;
+  const RemeshResult r = remesh(ramp, o);
+  REQUIRE(r.status.ok());
+  CHECK(r.report.patchSplitsForScale >= 2);  // three parts at least
+  CHECK(r.report.patches <= 5);              // two per turn at most
+  CHECK(r.report.minAngle >= o.minAngle);
+  CHECK(r.report.topologyPreserved);
+}
