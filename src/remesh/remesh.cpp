@@ -35,8 +35,9 @@ constexpr double kRepairDeviationFloor = 0.25;
 
 // What the certificate left below the bound: free vertices (not on a feature or boundary curve,
 // not a corner) moved over the surface in 3D (remesh/repair.h).
-void repairBelowBound(const Surface& surf, const CurveSamples& cs, const ExemptCorners& exempt, const RemeshOptions& opt,
-                      BestRound& best, RemeshReport& rep) {
+// Returns the triangles left below the bound.
+size_t repairBelowBound(const Surface& surf, const CurveSamples& cs, const ExemptCorners& exempt, const RemeshOptions& opt,
+                        BestRound& best, RemeshReport& rep) {
   MeshBuffers& out = best.out;
   std::vector<uint8_t> pinned(out.vertexCount(), 0);
   for (size_t c = 0; c < surf.seg.curves.size(); ++c)
@@ -55,6 +56,7 @@ void repairBelowBound(const Surface& surf, const CurveSamples& cs, const ExemptC
   if (rs.rounds >= kRepairRounds && rs.left > 0)
     rep.warnings.push_back("repair stopped at its cap of " + std::to_string(kRepairRounds) + " passes with " +
                            std::to_string(rs.left) + " triangles below the bound");
+  return rs.left;
 }
 
 // The pipeline of ../shared/DESIGN.md in the order of CONFORMESH_REMESH_STAGES (core/stages.h),
@@ -89,7 +91,10 @@ RemeshResult run(const MeshBuffers& input, const RemeshOptions& opt, const Progr
 
   // refine, lift, optimize, stitch and certificate in rounds (rounds.h)
   ExemptCorners exempt(opt.minAngle);
-  BestRound best = meshRounds(surf, opt, progress, m, exempt, rep, clock);
+  BestRound best = meshRounds(surf, opt, progress, m, exempt, rep, clock, [&](BestRound& trial) {
+    RemeshReport scratch;  // a trial: its moves and warnings are not the output's
+    return repairBelowBound(surf, m.samples, exempt, opt, trial, scratch);
+  });
   if (best.bad > 0) {
     begin(Stage::Repair);
     repairBelowBound(surf, m.samples, exempt, opt, best, rep);

@@ -68,7 +68,7 @@ void optimizePatches(const Surface& surf, const RemeshOptions& opt, Meshing& m, 
 }  // namespace
 
 BestRound meshRounds(const Surface& surf, const RemeshOptions& opt, const Progress& progress, Meshing& m,
-                     ExemptCorners& exempt, RemeshReport& rep, StageClock& clock) {
+                     ExemptCorners& exempt, RemeshReport& rep, StageClock& clock, const RepairLeft& repairLeft) {
   Patches& work = m.patches;
   BestRound best;
   MeshBuffers out;
@@ -77,6 +77,23 @@ BestRound meshRounds(const Surface& surf, const RemeshOptions& opt, const Progre
   size_t bestBad = SIZE_MAX, bestCollapsed = SIZE_MAX, bestDoubled = SIZE_MAX;  // bestDoubled: stitch defects
   int staleRounds = 0;  // certificate rounds in a row without progress (see kRoundProgress)
   std::vector<std::vector<uint32_t>> bestCurveSamples;
+  bool repairTried = false;  // repairLeft was tried on the best round
+  // repairLeft on a copy of the best round, with the curve samples and the exempt wedges it had
+  const auto repairLeftOnBest = [&] {
+    BestRound trial;
+    trial.out = outIsBest ? out : best.out;
+    trial.triPatch = outIsBest ? triPatch : best.triPatch;
+    trial.vertexFace = outIsBest ? vertexFace : best.vertexFace;
+    trial.bad = bestBad;
+    if (!outIsBest) std::swap(m.samples.cm.curveSamples, bestCurveSamples);
+    exempt.vertex.resize(trial.out.vertexCount(), 0);
+    exempt.indexWedges(surf, m.samples);
+    const size_t left = repairLeft(trial);
+    if (!outIsBest) std::swap(m.samples.cm.curveSamples, bestCurveSamples);
+    exempt.vertex.resize(out.vertexCount(), 0);
+    exempt.indexWedges(surf, m.samples);
+    return left;
+  };
   for (int cert = 0;; ++cert) {
     // the first round runs the stages in their order; a later one re-meshes what the certificate
     // asked for, its progress that of the certificate's rounds
@@ -176,7 +193,18 @@ BestRound meshRounds(const Surface& surf, const RemeshOptions& opt, const Progre
     // next round often gets there (docs/decisions/0008). While the best round still has a stitch
     // defect the rounds go on to their cap: a non-manifold output is an error, worse than any
     // angle.
-    if (staleRounds >= 2 && bestDoubled == 0) break;
+    // ... but only when the repair does take the rest, tried on a copy of the best round (each
+    // best round once): otherwise the rounds go on to their cap (ChineseDragon-10kv at 35°: after
+    // two stale rounds the repair left a cut sample's corner at 30°; four more rounds and the
+    // repair left none).
+    if (better) repairTried = false;
+    if (staleRounds >= 2 && bestDoubled == 0) {
+      if (bestBad == 0 || !repairLeft) break;
+      if (!repairTried) {
+        repairTried = true;
+        if (repairLeftOnBest() == 0) break;
+      }
+    }
     // a stitch defect left at the cap gets kKeepBoundaryRounds more, its patches keeping their
     // boundary (PatchWork::keepBoundary): a non-manifold output is an error
     const int rounds = opt.maxCertificateRounds + (bestDoubled > 0 ? kKeepBoundaryRounds : 0);
