@@ -3,6 +3,7 @@
 #include "features/creases.h"
 #include "features/close_junctions.h"
 #include "features/cut_junctions.h"
+#include "features/merge_cut_patches.h"
 #include "features/wedges.h"
 #include "core/detmath.h"
 
@@ -496,6 +497,8 @@ Segmentation segment(const EdgeGraph& g, const FeatureOptions& options, const Pr
       fail(Code::Cancelled, Stage::Segment, "cancelled");
   }
   rebuildCurves(g, seg);
+  // strips narrower than an output edge that only cuts border (features/merge_cut_patches.h)
+  if (mergeCutPatches(g, seg, seg.junctionScale) > 0) rebuildCurves(g, seg);
   improveCutJunctions(g, seg, seg.junctionScale);
   mergeCloseJunctions(g, seg, kCloseJunctionFactor * seg.junctionScale);
   straightenCutEars(g, seg);

@@ -45,7 +45,9 @@ struct FeatureOptions {
   //! Hard cap on the number of patches cutting may create (IterationLimit when hit).
   uint32_t maxPatches = 4096;
   //! Length scale (absolute) at which the angles where a cut meets another curve are judged and
-  //! improved (see improveCutJunctions); about the output edge length. 0 leaves cuts as found.
+  //! improved (see improveCutJunctions), and the width below which a patch joins a neighbour
+  //! across the cuts between them (features/merge_cut_patches.h); about the output edge length.
+  //! 0 leaves cuts as found.
   double junctionScale = 0.0;
 };
 

@@ -19,6 +19,7 @@
 #include "features/segmentation.h"
 #include "features/close_junctions.h"
 #include "features/cut_junctions.h"
+#include "features/merge_cut_patches.h"
 #include "features/sizing.h"
 #include "features/test_shapes.h"
 #include "features/wedges.h"
@@ -924,4 +925,85 @@ TEST_CASE("features: splitPatch with seed faces puts them in different parts, wh
   REQUIRE(c != kNone);
   REQUIRE(splitPatch(g, apart, 0, 2, {a, c}));
   CHECK(apart.edgeKind == far.edgeKind);
+}
+
+TEST_CASE("features: mergeCutPatches joins a strip narrower than the width across its cuts; a union that is no disk stays apart") {
+  SUBCASE("a one-row strip of a square joins the region beside it; the wider regions stay") {
+    const int n = 12;
+    const EdgeGraph g = buildEdgeGraph(testshapes::square(n));
+    Segmentation s = segment(g, FeatureOptions{});
+    REQUIRE(s.patches.size() == 1);
+    // cuts along the grid lines y = 1/n and y = 6/n: a strip 1/n wide, one 5/n wide, one 6/n wide
+    for (uint32_t e = 0; e < g.edgeCount(); ++e) {
+      const Vec3 a = g.positions[g.edgeVerts[e][0]], b = g.positions[g.edgeVerts[e][1]];
+      for (int row : {1, 6})
+        if (std::abs(a.y - double(row) / n) < 1e-12 && std::abs(b.y - double(row) / n) < 1e-12 && !g.isBoundary(e)) {
+          s.edgeKind[e] = EdgeKind::Cut;
+          ++s.cutEdgeCount;
+        }
+    }
+    rebuildCurves(g, s);
+    REQUIRE(s.patches.size() == 3);
+    const std::vector<EdgeKind> before = s.edgeKind;
+    CHECK(mergeCutPatches(g, s, 2.0 / n) == 1);
+    rebuildCurves(g, s);
+    CHECK(s.patches.size() == 2);
+    checkPatchesAreDisks(g, s);
+    for (uint32_t e = 0; e < g.edgeCount(); ++e) {
+      const double y = g.positions[g.edgeVerts[e][0]].y;
+      if (before[e] != EdgeKind::Cut) CHECK(s.edgeKind[e] == before[e]);  // nothing but cuts changes
+      else CHECK(s.edgeKind[e] == (std::abs(y - 1.0 / n) < 1e-12 ? EdgeKind::None : EdgeKind::Cut));
+    }
+    Segmentation none = s;
+    CHECK(mergeCutPatches(g, none, 0.0) == 0);  // no width, no join
+  }
+  SUBCASE("the disks of a closed cube and of a torus never join into a closed or a holed patch, whatever the width") {
+    for (const MeshBuffers& m : {testshapes::cube(6), testshapes::torus(32, 12)}) {
+      const EdgeGraph g = buildEdgeGraph(m);
+      FeatureOptions o;
+      o.featureAngleDeg = 100;  // no crease: the surface is cut into disks only
+      Segmentation s = segment(g, o);
+      REQUIRE(s.patches.size() >= 2);
+      mergeCutPatches(g, s, 10 * boundingBoxDiagonal(g));
+      rebuildCurves(g, s);
+      CHECK(s.patches.size() >= 2);
+      checkPatchesAreDisks(g, s);
+    }
+  }
+  SUBCASE("man, as the remesh segments it at 1 %: fewer patches narrower than an output edge, all disks, the features as they were") {
+    std::ifstream in(std::string(CONFORMESH_DATA_DIR) + "/man.off", std::ios::binary);
+    REQUIRE(in);
+    const std::vector<uint8_t> bytes((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+    const EdgeGraph g = buildEdgeGraph(readMesh(bytes).mesh);
+    const double target = 0.01 * boundingBoxDiagonal(g);
+    FeatureOptions fo;
+    fo.minFeatureLength = 2 * target;
+    Segmentation s = segment(g, fo);  // junctionScale 0: no joins, no junction repairs
+    const auto narrow = [&](const Segmentation& x) {
+      size_t count = 0;
+      for (const auto& faces : x.patches) {
+        double area = 0, perimeter = 0;
+        for (uint32_t f : faces) {
+          area += g.faceArea(f);
+          for (uint32_t e : g.faceEdges[f]) {
+            const uint32_t o = g.edgeFaces[e][0] == f ? g.edgeFaces[e][1] : g.edgeFaces[e][0];
+            if (o == kNone || x.facePatch[o] != x.facePatch[f]) perimeter += g.edgeLength(e);
+          }
+        }
+        count += 2 * area < target * perimeter;
+      }
+      return count;
+    };
+    const Segmentation before = s;
+    const uint32_t joins = mergeCutPatches(g, s, target);
+    rebuildCurves(g, s);
+    INFO("joins " << joins << ", patches " << before.patches.size() << " -> " << s.patches.size() << ", narrow " << narrow(before)
+                  << " -> " << narrow(s));
+    CHECK(joins > 0);
+    CHECK(s.patches.size() == before.patches.size() - joins);
+    CHECK(narrow(s) < narrow(before));
+    checkPatchesAreDisks(g, s);
+    for (uint32_t e = 0; e < g.edgeCount(); ++e)
+      if (before.edgeKind[e] != EdgeKind::Cut) CHECK(s.edgeKind[e] == before.edgeKind[e]);
+  }
 }
