@@ -312,7 +312,13 @@ FlatPatch flattenCompact(const MeshBuffers& patch, const FlattenOptions& options
   for (const auto& c : L.crossingEdges) R.boundaryCrossingEdges.push_back({uint32_t(c[0]), uint32_t(c[1]), uint32_t(c[2]), uint32_t(c[3])});
   R.layoutLengthError = L.maxEdgeLengthError;
   if (L.invertedTriangles > 0 || L.boundaryCrossings > 0 || !(L.maxEdgeLengthError <= 1e-3)) {
-    const std::string why = scaleDiagnosis(T, u, fo.boundary);
+    std::string why = scaleDiagnosis(T, u, fo.boundary);
+    // every triangle in place and every length kept, yet the border crosses itself: the map is
+    // right and the patch winds further than one sheet of the plane holds (a ramp of more than
+    // a turn); no precision mends that
+    if (why.empty() && L.invertedTriangles == 0 && L.maxEdgeLengthError <= 1e-3)
+      why = "the flat map is valid triangle by triangle but its border overlaps itself (the patch winds around more "
+            "than the plane holds): split the patch";
     R.invalidLayout = "flatten: the layout has " + std::to_string(L.invertedTriangles) + " inverted triangles, " +
                       std::to_string(L.boundaryCrossings) + " boundary crossings and a relative edge length error of " +
                       std::to_string(L.maxEdgeLengthError) + ": " +

@@ -256,6 +256,14 @@ TEST_CASE("flatten: a ramp of one and a half turns lays out overlapping itself; 
   const FlatPatch g = flatten(testshapes::helicoidStrip(0.75, 1.0, 2.0, 0.2, 36, 6), o);
   CHECK(g.report.boundaryCrossings == 0);
   CHECK(g.report.invalidLayout.empty());
+  // a narrow ramp of 1.1 turns: every triangle in place and every length kept, the border over
+  // itself; the message says so (not precision, which no split of the patch would be about)
+  const FlatPatch h = flatten(testshapes::helicoidStrip(1.1, 1.0, 2.0, 0.2, 52, 3), o);
+  REQUIRE(h.report.boundaryCrossings > 0);
+  CHECK(h.report.invertedTriangles == 0);
+  CHECK(h.report.layoutLengthError <= 1e-3);
+  CHECK(h.report.invalidLayout.find("border overlaps itself") != std::string::npos);
+  CHECK(h.report.invalidLayout.find("double precision") == std::string::npos);
 }
 
 TEST_CASE("flatten: corner-preserving boundary makes a square of a bent square patch") {
