@@ -15,6 +15,6 @@ namespace conformesh::features {
 //! union a disk; one pass, each patch tried once against its neighbours as they are by then.
 //! The cut edges between joined patches become plain edges; the caller rebuilds the curves.
 //! maxWidth <= 0 joins none. Returns the number of joins. O(Σ over the tries of the two
-//! patches' faces).
+//! patches' faces). docs/decisions/0041.
 uint32_t mergeCutPatches(const EdgeGraph& g, Segmentation& seg, double maxWidth);
 }  // namespace conformesh::features

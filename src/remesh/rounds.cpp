@@ -196,7 +196,7 @@ BestRound meshRounds(const Surface& surf, const RemeshOptions& opt, const Progre
     // ... but only when the repair does take the rest, tried on a copy of the best round (each
     // best round once): otherwise the rounds go on to their cap (ChineseDragon-10kv at 35°: after
     // two stale rounds the repair left a cut sample's corner at 30°; four more rounds and the
-    // repair left none).
+    // repair left none; docs/decisions/0042).
     if (better) repairTried = false;
     if (staleRounds >= 2 && bestDoubled == 0) {
       if (bestBad == 0 || !repairLeft) break;
