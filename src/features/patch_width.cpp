@@ -65,4 +65,19 @@ std::vector<std::array<double, 2>> patchWidths(const EdgeGraph& g, const Segment
   return width;
 }
 
+PatchExtents patchExtents(const EdgeGraph& g, const Segmentation& seg) {
+  PatchExtents x;
+  x.area.assign(seg.patches.size(), 0.0);
+  x.perimeter.assign(seg.patches.size(), 0.0);
+  for (uint32_t f = 0; f < g.faceCount; ++f) x.area[seg.facePatch[f]] += g.faceArea(f);
+  for (uint32_t e = 0; e < g.edgeCount(); ++e) {
+    const uint32_t f0 = g.edgeFaces[e][0], f1 = g.edgeFaces[e][1];
+    const uint32_t p0 = seg.facePatch[f0], p1 = f1 == kNone ? kNone : seg.facePatch[f1];
+    if (p0 == p1) continue;  // inside a patch (a slit counts for nothing)
+    x.perimeter[p0] += g.edgeLength(e);
+    if (p1 != kNone) x.perimeter[p1] += g.edgeLength(e);
+  }
+  return x;
+}
+
 }  // namespace conformesh::features

@@ -22,4 +22,12 @@ namespace conformesh::features {
 //! surface. O(E log E) over the patches' boundary edges.
 std::vector<std::array<double, 2>> patchWidths(const EdgeGraph& g, const Segmentation& seg, double maxDistance);
 
+//! Per patch of seg (by seg.facePatch): its area, and its perimeter, the length of its edges on
+//! the boundary or beside another patch (an edge with the patch on both sides counts for
+//! nothing). 2 · area / perimeter is the width of a strip. O(F + E).
+struct PatchExtents {
+  std::vector<double> area, perimeter;
+};
+PatchExtents patchExtents(const EdgeGraph& g, const Segmentation& seg);
+
 }  // namespace conformesh::features

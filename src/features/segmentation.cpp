@@ -4,6 +4,7 @@
 #include "features/close_junctions.h"
 #include "features/cut_junctions.h"
 #include "features/merge_cut_patches.h"
+#include "features/patch_width.h"
 #include "features/wedges.h"
 #include "core/detmath.h"
 
@@ -309,15 +310,7 @@ uint32_t mergeNarrowPatches(const EdgeGraph& g, Segmentation& seg, double minWid
     floodPatches(g, seg);
     const size_t np = seg.patches.size();
     if (np < 2) break;
-    std::vector<double> area(np, 0.0), perimeter(np, 0.0);
-    for (uint32_t f = 0; f < g.faceCount; ++f) area[seg.facePatch[f]] += g.faceArea(f);
-    for (uint32_t e = 0; e < g.edgeCount(); ++e) {
-      const uint32_t f0 = g.edgeFaces[e][0], f1 = g.edgeFaces[e][1];
-      const uint32_t p0 = seg.facePatch[f0], p1 = f1 == kNone ? kNone : seg.facePatch[f1];
-      if (p0 == p1) continue;  // inside a patch (a slit counts for nothing)
-      perimeter[p0] += g.edgeLength(e);
-      if (p1 != kNone) perimeter[p1] += g.edgeLength(e);
-    }
+    const auto [area, perimeter] = patchExtents(g, seg);
     std::vector<std::pair<double, uint32_t>> narrow;
     for (uint32_t p = 0; p < np; ++p)
       if (perimeter[p] > 0 && 2.0 * area[p] < minWidth * perimeter[p]) narrow.push_back({2.0 * area[p] / perimeter[p], p});
