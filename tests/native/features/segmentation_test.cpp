@@ -55,6 +55,15 @@ uint32_t vertexAt(const EdgeGraph& g, double x, double y) {
     if (std::abs(g.positions[v].x - x) < 1e-12 && std::abs(g.positions[v].y - y) < 1e-12) return v;
   return kNone;
 }
+// The model `name` of ../shared/data (its file name tells the reader the format).
+MeshBuffers dataModel(const std::string& name) {
+  std::ifstream in(std::string(CONFORMESH_DATA_DIR) + "/" + name, std::ios::binary);
+  REQUIRE(in);
+  const std::vector<uint8_t> bytes((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  ReadOptions ro;
+  ro.fileName = name;
+  return readMesh(bytes, ro).mesh;
+}
 }  // namespace
 
 TEST_CASE("features: cube has 12 feature curves, 8 corners, 6 disk patches") {
@@ -543,12 +552,7 @@ int cutHairpins(const EdgeGraph& g, const Segmentation& s) {
 
 TEST_CASE("features: improveCutJunctions' reroutes add no cut hairpins (fertility, t13_data: shortest paths through needle fans did)") {
   for (const char* name : {"fertility.off", "t13_data.stl"}) {
-    std::ifstream in(std::string(CONFORMESH_DATA_DIR) + "/" + name, std::ios::binary);
-    REQUIRE(in);
-    const std::vector<uint8_t> bytes((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
-    ReadOptions ro;
-    ro.fileName = name;
-    const EdgeGraph g = buildEdgeGraph(readMesh(bytes, ro).mesh);
+    const EdgeGraph g = buildEdgeGraph(dataModel(name));
     const Segmentation before = segment(g, FeatureOptions{});  // junctionScale 0: no reroutes
     Segmentation after = before;
     const uint32_t rerouted = improveCutJunctions(g, after, 0.01 * boundingBoxDiagonal(g));
@@ -560,10 +564,7 @@ TEST_CASE("features: improveCutJunctions' reroutes add no cut hairpins (fertilit
 }
 
 TEST_CASE("features: improveCutJunctions with a region reroutes only the cuts beside it (fertility)") {
-  std::ifstream in(std::string(CONFORMESH_DATA_DIR) + "/fertility.off", std::ios::binary);
-  REQUIRE(in);
-  const std::vector<uint8_t> bytes((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
-  const EdgeGraph g = buildEdgeGraph(readMesh(bytes).mesh);
+  const EdgeGraph g = buildEdgeGraph(dataModel("fertility.off"));
   const Segmentation s0 = segment(g, FeatureOptions{});  // junctionScale 0: no reroutes
   const double scale = 0.01 * boundingBoxDiagonal(g);
   // the region: the patch beside the first cut; cuts may move within it and the patches across
@@ -593,10 +594,7 @@ TEST_CASE("features: improveCutJunctions with a region reroutes only the cuts be
 TEST_CASE("features: mergeCloseJunctions moves cut junctions off short curves; features stay, patches stay disks (camelhead, man)") {
   int modelsWithShortCurves = 0;
   for (const char* name : {"camelhead.off", "man.off"}) {
-    std::ifstream in(std::string(CONFORMESH_DATA_DIR) + "/" + name, std::ios::binary);
-    REQUIRE(in);
-    const std::vector<uint8_t> bytes((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
-    const EdgeGraph g = buildEdgeGraph(readMesh(bytes).mesh);
+    const EdgeGraph g = buildEdgeGraph(dataModel(name));
     FeatureOptions fo;
     fo.minFeatureLength = 0.02 * boundingBoxDiagonal(g);  // creases as the remesh finds them at 1 %
     const Segmentation before = segment(g, fo);            // junctionScale 0: no junction repairs
@@ -851,10 +849,7 @@ void checkSameAsScratch(const EdgeGraph& g, const Segmentation& s) {
 }  // namespace
 
 TEST_CASE("features: rebuildCurves after local changes gives what a rebuild from scratch gives, ids included (cylinder loops, man)") {
-  std::ifstream in(std::string(CONFORMESH_DATA_DIR) + "/man.off", std::ios::binary);
-  REQUIRE(in);
-  const std::vector<uint8_t> bytes((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
-  for (const MeshBuffers& mesh : {testshapes::cylinder(24, 8, 4), readMesh(bytes).mesh}) {
+  for (const MeshBuffers& mesh : {testshapes::cylinder(24, 8, 4), dataModel("man.off")}) {
     const EdgeGraph g = buildEdgeGraph(mesh);
     FeatureOptions fo;
     fo.minFeatureLength = 0.02 * boundingBoxDiagonal(g);
@@ -971,10 +966,7 @@ TEST_CASE("features: mergeCutPatches joins a strip narrower than the width acros
     }
   }
   SUBCASE("man, as the remesh segments it at 1 %: fewer patches narrower than an output edge, all disks, the features as they were") {
-    std::ifstream in(std::string(CONFORMESH_DATA_DIR) + "/man.off", std::ios::binary);
-    REQUIRE(in);
-    const std::vector<uint8_t> bytes((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
-    const EdgeGraph g = buildEdgeGraph(readMesh(bytes).mesh);
+    const EdgeGraph g = buildEdgeGraph(dataModel("man.off"));
     const double target = 0.01 * boundingBoxDiagonal(g);
     FeatureOptions fo;
     fo.minFeatureLength = 2 * target;
