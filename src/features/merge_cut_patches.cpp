@@ -16,7 +16,9 @@ uint32_t mergeCutPatches(const EdgeGraph& g, Segmentation& seg, double maxWidth)
   if (P < 2 || !(maxWidth > 0)) return 0;
   UnionFind groups(P);
   std::vector<std::vector<uint32_t>> faces = seg.patches;  // per group root
-  auto [area, perimeter] = patchExtents(g, seg);           // per group root
+  PatchExtents extents = patchExtents(g, seg);  // per group root
+  std::vector<double>& area = extents.area;
+  std::vector<double>& perimeter = extents.perimeter;
   const auto narrow = [&](uint32_t a) { return 2 * area[a] < maxWidth * perimeter[a]; };
   std::vector<uint32_t> order(P);
   std::iota(order.begin(), order.end(), 0u);

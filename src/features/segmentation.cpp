@@ -310,7 +310,9 @@ uint32_t mergeNarrowPatches(const EdgeGraph& g, Segmentation& seg, double minWid
     floodPatches(g, seg);
     const size_t np = seg.patches.size();
     if (np < 2) break;
-    const auto [area, perimeter] = patchExtents(g, seg);
+    const PatchExtents extents = patchExtents(g, seg);
+    const std::vector<double>& area = extents.area;
+    const std::vector<double>& perimeter = extents.perimeter;
     std::vector<std::pair<double, uint32_t>> narrow;
     for (uint32_t p = 0; p < np; ++p)
       if (perimeter[p] > 0 && 2.0 * area[p] < minWidth * perimeter[p]) narrow.push_back({2.0 * area[p] / perimeter[p], p});
