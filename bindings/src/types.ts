@@ -337,6 +337,11 @@ export interface RemeshOptions {
   maxCertificateRounds?: number;
   /** Optimize each patch after refinement (ODT moves and flips judged in 3D; default true). */
   optimize?: boolean;
+  /**
+   * A crease that ends inside a smooth region stays a constrained polyline inside its patch's
+   * planar domain, instead of being continued until it closes the region off. Default false.
+   */
+  innerCreases?: boolean;
   /** The boundary condition each patch's flattening tries first (the others follow when its layout fails). Default 'free'. */
   boundary?: 'free' | 'corners' | 'circle';
   /** Return every patch in the plane (RemeshResult.patches, patchOfTriangle), e.g. to draw the flattened domain. Default false. */

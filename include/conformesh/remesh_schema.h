@@ -81,6 +81,9 @@ inline bool parseBoundary(const std::string& s, Boundary& b) {
   X(double, minPatchWidth, 0.0, -1e308, 1e308, "--min-patch-width", "W",                                                \
     "merge patches narrower than this (2 area / perimeter, input units) into a neighbour; < 0: half the "               \
     "smallest edge; 0: off")                                                                                            \
+  /* a crease ending inside a smooth region need not cut it (docs/decisions/0043-inner-creases.md) */                  \
+  X(bool, innerCreases, false, 0, 1, "--inner-creases", "",                                                             \
+    "keep a crease that ends inside a region as a polyline inside its patch, not continued until it closes the region") \
   /* when a layout fails (overlaps itself, or loses precision) the others follow: free, corners, circle */              \
   X(Boundary, boundary, Boundary::Free, 0, 0, "--boundary", "free|corners|circle",                                      \
     "the boundary condition each patch's flattening tries first")                                                       \

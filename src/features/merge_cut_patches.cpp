@@ -11,7 +11,7 @@
 
 namespace conformesh::features {
 
-uint32_t mergeCutPatches(const EdgeGraph& g, Segmentation& seg, double maxWidth) {
+uint32_t mergeCutPatches(const EdgeGraph& g, Segmentation& seg, double maxWidth, const std::vector<uint32_t>& region) {
   const uint32_t P = uint32_t(seg.patches.size());
   if (P < 2 || !(maxWidth > 0)) return 0;
   UnionFind groups(P);
@@ -27,6 +27,9 @@ uint32_t mergeCutPatches(const EdgeGraph& g, Segmentation& seg, double maxWidth)
   });
   // the patches narrow to begin with; a wider one that a join makes narrower is not tried
   order.resize(std::count_if(order.begin(), order.end(), narrow));
+  std::vector<uint8_t> inRegion(P, region.empty() ? 1 : 0);
+  for (const uint32_t f : region) inRegion[seg.facePatch[f]] = 1;
+  order.erase(std::remove_if(order.begin(), order.end(), [&](uint32_t p) { return !inRegion[p]; }), order.end());
   std::vector<uint8_t> mask = seg.curveMask();
   uint32_t joins = 0;
   std::vector<std::pair<uint32_t, uint32_t>> cuts;  // (neighbour group, cut edge) around a group
@@ -39,7 +42,7 @@ uint32_t mergeCutPatches(const EdgeGraph& g, Segmentation& seg, double maxWidth)
         if (seg.edgeKind[e] != EdgeKind::Cut) continue;
         const uint32_t across = g.edgeFaces[e][0] == f ? g.edgeFaces[e][1] : g.edgeFaces[e][0];  // a cut edge has two faces
         const uint32_t b = groups.find(seg.facePatch[across]);
-        if (b != p) cuts.push_back({b, e});
+        if (b != p && inRegion[b]) cuts.push_back({b, e});
       }
     std::sort(cuts.begin(), cuts.end());
     runs.clear();

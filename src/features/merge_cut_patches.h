@@ -14,7 +14,8 @@ namespace conformesh::features {
 //! Narrowest first, each into the neighbour it shares the most cut edges with that keeps the
 //! union a disk; one pass, each patch tried once against its neighbours as they are by then.
 //! The cut edges between joined patches become plain edges; the caller rebuilds the curves.
-//! maxWidth <= 0 joins none. Returns the number of joins. O(Σ over the tries of the two
-//! patches' faces). docs/decisions/0041.
-uint32_t mergeCutPatches(const EdgeGraph& g, Segmentation& seg, double maxWidth);
+//! maxWidth <= 0 joins none. `region` (input faces; empty: all): only the patches over it join,
+//! and only each other. Returns the number of joins. O(Σ over the tries of the two patches'
+//! faces). docs/decisions/0041.
+uint32_t mergeCutPatches(const EdgeGraph& g, Segmentation& seg, double maxWidth, const std::vector<uint32_t>& region = {});
 }  // namespace conformesh::features

@@ -361,6 +361,29 @@ uint32_t mergeNarrowPatches(const EdgeGraph& g, Segmentation& seg, double minWid
 }
 
 
+// After new cuts in `region` (a patch's faces that now make two or more): their junctions
+// improved and their ears, slivers and narrow wedges repaired, as segment() does, within region.
+// The repairs must not leave the region one patch again (a pruned branch that separated its
+// parts): the split would be undone, and redone at the next flattening, without end.
+// Straightening makes no such move (a sliver part inside a wedge may go); a repair that leaves
+// one patch all the same is dropped.
+void repairNewCuts(const EdgeGraph& g, Segmentation& seg, const std::vector<uint32_t>& region) {
+  improveCutJunctions(g, seg, seg.junctionScale, region);
+  mergeCloseJunctions(g, seg, kCloseJunctionFactor * seg.junctionScale, region);
+  const auto keepingSplit = [&](auto&& repair) {
+    const std::vector<EdgeKind> before = seg.edgeKind;
+    const uint32_t cutEdges = seg.cutEdgeCount;
+    if (repair() > 0 && patchesOver(seg, region) < 2) {
+      seg.edgeKind = before;
+      seg.cutEdgeCount = cutEdges;
+      rebuildCurves(g, seg);
+    }
+  };
+  keepingSplit([&] { return straightenCutEars(g, seg, region, true); });
+  keepingSplit([&] { return absorbCutSlivers(g, seg, seg.angleBoundDeg * kPi / 180, region); });
+  keepingSplit([&] { return moveNarrowCutWedges(g, seg, seg.angleBoundDeg * kPi / 180, region); });
+}
+
 }  // namespace
 
 // Continue every dangling feature curve (a vertex with exactly one curve edge) along the
@@ -369,7 +392,7 @@ uint32_t mergeNarrowPatches(const EdgeGraph& g, Segmentation& seg, double minWid
 // (and narrower than the vertex had) is taken only when no other step is left (other curve
 // vertices are left to improveCutJunctions): on a fan of needle faces the straightest edge can
 // reach a curve's dangling end right beside its last edge, a hairpin (docs/decisions/0005).
-void extendDanglingCurves(const EdgeGraph& g, Segmentation& seg) {
+void extendDanglingCurves(const EdgeGraph& g, Segmentation& seg, const std::vector<uint32_t>& from) {
   std::vector<uint32_t> valence(g.vertexCount, 0);
   for (uint32_t e = 0; e < g.edgeCount(); ++e)
     if (seg.isCurveEdge(e)) ++valence[g.edgeVerts[e][0]], ++valence[g.edgeVerts[e][1]];
@@ -381,7 +404,10 @@ void extendDanglingCurves(const EdgeGraph& g, Segmentation& seg) {
     const double after = smallestWedge(g, w, [&](uint32_t x) { return x == e || seg.isCurveEdge(x); }, scratch);
     return after < kNarrowCutWedge && after < before;
   };
-  for (uint32_t v0 = 0; v0 < g.vertexCount; ++v0) {
+  std::vector<uint32_t> starts = from;
+  if (from.empty())
+    for (uint32_t v = 0; v < g.vertexCount; ++v) starts.push_back(v);
+  for (const uint32_t v0 : starts) {
     if (valence[v0] != 1) continue;
     uint32_t ein = kNone;
     for (uint32_t k = g.vertexEdgeStart[v0]; k < g.vertexEdgeStart[v0 + 1]; ++k)
@@ -425,6 +451,10 @@ void extendDanglingCurves(const EdgeGraph& g, Segmentation& seg) {
 std::vector<uint8_t> Segmentation::curveMask() const {
   std::vector<uint8_t> m(edgeKind.size());
   for (size_t e = 0; e < m.size(); ++e) m[e] = edgeKind[e] != EdgeKind::None;
+  if (innerCreases)
+    for (uint32_t c = 0; c < curves.size(); ++c)
+      if (isInnerCurve(c))
+        for (uint32_t e : curves[c].edges) m[e] = 0;
   return m;
 }
 
@@ -447,6 +477,7 @@ Segmentation segment(const EdgeGraph& g, const FeatureOptions& options, const Pr
   seg.cornerTurnDeg = options.cornerTurnDeg;
   seg.angleBoundDeg = options.angleBoundDeg;
   seg.junctionScale = options.junctionScale;
+  seg.innerCreases = options.innerCreases;
   seg.edgeKind.assign(g.edgeCount(), EdgeKind::None);
   if (options.detectCreases) {
     CreaseOptions co;
@@ -480,7 +511,7 @@ Segmentation segment(const EdgeGraph& g, const FeatureOptions& options, const Pr
   }
   if (options.minPatchWidth > 0) seg.mergedNarrowPatches = mergeNarrowPatches(g, seg, options.minPatchWidth, userEdge);
   if (progress && !progress(Stage::Segment, 0.2)) fail(Code::Cancelled, Stage::Segment, "cancelled");
-  extendDanglingCurves(g, seg);
+  if (!options.innerCreases) extendDanglingCurves(g, seg);
   rebuildCurves(g, seg);
   if (progress && !progress(Stage::Segment, 0.4)) fail(Code::Cancelled, Stage::Segment, "cancelled");
   Cutter cutter(g, seg, options.maxPatches);
@@ -536,24 +567,38 @@ bool splitPatch(const EdgeGraph& g, Segmentation& seg, uint32_t p, uint32_t part
     cutter.toDisks(r, count);
   }
   rebuildCurves(g, seg);
-  improveCutJunctions(g, seg, seg.junctionScale, region);
-  mergeCloseJunctions(g, seg, kCloseJunctionFactor * seg.junctionScale, region);
-  // The repairs of the new cuts must not leave the split patch whole again (a pruned branch that
-  // separated its parts): the split would be undone, and redone at the next flattening, without
-  // end. Straightening makes no such move (a sliver part inside a wedge may go); a repair that
-  // leaves one patch all the same is dropped.
-  const auto keepingSplit = [&](auto&& repair) {
-    const std::vector<EdgeKind> before = seg.edgeKind;
-    const uint32_t cutEdges = seg.cutEdgeCount;
-    if (repair() > 0 && patchesOver(seg, region) < 2) {
-      seg.edgeKind = before;
-      seg.cutEdgeCount = cutEdges;
-      rebuildCurves(g, seg);
-    }
-  };
-  keepingSplit([&] { return straightenCutEars(g, seg, region, true); });
-  keepingSplit([&] { return absorbCutSlivers(g, seg, seg.angleBoundDeg * kPi / 180, region); });
-  keepingSplit([&] { return moveNarrowCutWedges(g, seg, seg.angleBoundDeg * kPi / 180, region); });
+  repairNewCuts(g, seg, region);
+  return true;
+}
+
+bool closeInnerCreases(const EdgeGraph& g, Segmentation& seg, uint32_t p) {
+  if (!seg.innerCreases || p >= seg.patches.size()) return false;
+  std::vector<uint32_t> valence(g.vertexCount, 0), tips;
+  for (uint32_t c = 0; c < seg.curves.size(); ++c)
+    if (seg.isInnerCurve(c) && seg.curves[c].patches[0] == p)
+      for (const uint32_t v : {seg.curves[c].vertices.front(), seg.curves[c].vertices.back()}) tips.push_back(v);
+  for (const uint32_t v : tips)
+    for (uint32_t k = g.vertexEdgeStart[v]; k < g.vertexEdgeStart[v + 1]; ++k) valence[v] += seg.isCurveEdge(g.vertexEdgeIds[k]);
+  tips.erase(std::remove_if(tips.begin(), tips.end(), [&](uint32_t v) { return valence[v] != 1; }), tips.end());
+  if (tips.empty()) return false;
+  std::sort(tips.begin(), tips.end());
+  tips.erase(std::unique(tips.begin(), tips.end()), tips.end());
+  const std::vector<uint32_t> region = seg.patches[p];
+  extendDanglingCurves(g, seg, tips);
+  rebuildCurves(g, seg);
+  // the parts the continued creases closed off, cut into disks
+  std::vector<uint32_t> partOf;
+  for (const uint32_t f : region) partOf.push_back(seg.facePatch[f]);
+  std::sort(partOf.begin(), partOf.end());
+  partOf.erase(std::unique(partOf.begin(), partOf.end()), partOf.end());
+  std::vector<std::vector<uint32_t>> parts;
+  for (const uint32_t q : partOf) parts.push_back(seg.patches[q]);
+  Cutter cutter(g, seg, 1u << 30);
+  uint32_t count = 0;
+  for (auto& part : parts) cutter.toDisks(part, count);
+  rebuildCurves(g, seg);
+  if (mergeCutPatches(g, seg, seg.junctionScale, region) > 0) rebuildCurves(g, seg);
+  if (patchesOver(seg, region) >= 2) repairNewCuts(g, seg, region);
   return true;
 }
 

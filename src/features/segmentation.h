@@ -49,6 +49,9 @@ struct FeatureOptions {
   //! across the cuts between them (features/merge_cut_patches.h); about the output edge length.
   //! 0 leaves cuts as found.
   double junctionScale = 0.0;
+  //! A crease that ends inside a region (a dangling chain) stays a polyline inside its patch
+  //! (Segmentation::isInnerCurve) instead of being continued until it closes the region off.
+  bool innerCreases = false;
 };
 
 enum class EdgeKind : uint8_t { None = 0, Feature = 1, Boundary = 2, Cut = 3 };
@@ -79,11 +82,19 @@ struct Segmentation {
   double cornerTurnDeg = 50.0;  //!< the option used, kept for rebuildCurves after splits
   double junctionScale = 0.0;  //!< the option used, kept for splitPatch
   double angleBoundDeg = 30.0;  //!< the option used, kept for splitPatch
+  bool innerCreases = false;    //!< the option used: feature curves may lie inside a patch
   uint32_t reroutedCutEnds = 0;  //!< cut ends moved by improveCutJunctions
   uint32_t droppedFeatureEdges = 0;  //!< sharp edges dropped: short chains, borders of narrow patches
   uint32_t mergedNarrowPatches = 0;  //!< patches narrower than minPatchWidth merged into a neighbour
 
   bool isCurveEdge(uint32_t e) const { return edgeKind[e] != EdgeKind::None; }
+  //! A feature curve with the same patch on both sides (FeatureOptions::innerCreases): the patch
+  //! is not cut open along it, and its planar domain keeps it as a constrained polyline.
+  bool isInnerCurve(uint32_t c) const {
+    const Curve& cu = curves[c];
+    return innerCreases && cu.kind == EdgeKind::Feature && cu.patches[0] == cu.patches[1] && cu.patches[0] != kNone;
+  }
+  //! Per input edge: a patch is cut open along it (a curve edge, but for inner curves' edges).
   std::vector<uint8_t> curveMask() const;
 };
 
@@ -106,11 +117,18 @@ bool splitPatch(const EdgeGraph& g, Segmentation& seg, uint32_t p, uint32_t part
 //! input corner that no mesh of the surface can give better angles: the remesh exempts it.
 std::vector<double> featureWedgeAngles(const EdgeGraph& g, const Segmentation& seg);
 
-//! Continue every dangling feature curve (a vertex with exactly one curve edge) along the
-//! straightest path of input edges until it meets a curve, so no patch contains a slit. A step
-//! onto another curve's dangling end that would make a wedge below 45° there is taken only when
-//! no other step is left. Marks the new edges Cut; the caller rebuilds the curves.
-void extendDanglingCurves(const EdgeGraph& g, Segmentation& seg);
+//! Continue every dangling feature curve (a vertex with exactly one curve edge; `from`: only
+//! those ending at these vertices) along the straightest path of input edges until it meets a
+//! curve, so no patch contains a slit. A step onto another curve's dangling end that would make a
+//! wedge below 45° there is taken only when no other step is left. Marks the new edges Cut; the
+//! caller rebuilds the curves.
+void extendDanglingCurves(const EdgeGraph& g, Segmentation& seg, const std::vector<uint32_t>& from = {});
+
+//! Patch p's inner curves (Segmentation::isInnerCurve) continued from their dangling ends as
+//! extendDanglingCurves does, the parts that closes off cut into disks, curves and patches
+//! rebuilt: what segment() without innerCreases makes of the patch, for a patch whose flattening
+//! fails or spreads its scale too far with them inside. False (nothing changed) when it has none.
+bool closeInnerCreases(const EdgeGraph& g, Segmentation& seg, uint32_t p);
 
 //! Recompute curves, corners and patches from seg.edgeKind (after edges were marked). Only the
 //! curves and patches beside the edges changed since the last rebuild are redone; the result,

@@ -2,6 +2,7 @@
 #include "core/constants.h"
 #include "core/parallel_for.h"
 #include "features/sink_cuts.h"
+#include "remesh/curve_samples.h"
 
 #include <algorithm>
 #include <cmath>
@@ -399,6 +400,14 @@ Patches flattenPatches(Surface& surf, const RemeshOptions& opt, const Progress& 
           continue;
         }
         if (f.error) std::rethrow_exception(f.error);
+        // a flattening that fails or spreads its scale too far with creases inside: those creases
+        // continued until they close their parts off first, as the segmentation does without
+        // inner creases (features/segmentation.h)
+        if ((f.splitAsked || !f.flattened || f.scaleSplit) && F::closeInnerCreases(surf.g, surf.seg, p)) {
+          ++rep.patchSplitsForScale;
+          split = true;
+          continue;
+        }
         // a failed flattening: cut through a vertex too far from flat (kConeGap) before splitting
         // around it
         const FarFromFlat far = f.splitAsked || !f.flattened ? farFromFlat(f.w->pm) : FarFromFlat{};
@@ -464,6 +473,7 @@ Patches flattenPatches(Surface& surf, const RemeshOptions& opt, const Progress& 
     if (split) continue;
     Patches work;
     for (const auto& faces : surf.seg.patches) work.push_back(std::move(cache.at(keyOf(faces))));
+    for (auto& w : work) w->inner = innerCurves(surf, w->pm);
     // the pull-backs of the flattenings kept (most of those made were dropped for a cut)
     parallelFor(work.size(), unsigned(opt.threads), [&](size_t i) { finishPullback(work[i]->flat); });
     return work;

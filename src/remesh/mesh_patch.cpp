@@ -138,8 +138,10 @@ double slabHalfWidth(const F::PatchMesh& pm) {
   return std::isfinite(w) ? w : INFINITY;
 }
 
-// Fewer than 3 boundary samples, or all of them on one line (relative to their spread).
-bool degenerateBoundary(const std::vector<BoundaryPoint>& bp) {
+// Fewer than 3 samples on the boundary loop, or all of them on one line (relative to their
+// spread).
+bool degenerateBoundary(const std::vector<BoundaryPoint>& all) {
+  const std::vector<BoundaryPoint> bp(all.begin(), all.begin() + long(loopPointCount(all)));
   if (bp.size() < 3) return true;
   double minx = INFINITY, miny = INFINITY, maxx = -INFINITY, maxy = -INFINITY;
   for (const auto& b : bp) minx = std::min(minx, b.x), maxx = std::max(maxx, b.x), miny = std::min(miny, b.y), maxy = std::max(maxy, b.y);
@@ -157,16 +159,19 @@ bool degenerateBoundary(const std::vector<BoundaryPoint>& bp) {
   return off < 1e-6 * span;
 }
 
-// The closed polygon through a patch's boundary points, in order.
-planar::Pslg boundaryPslg(const std::vector<BoundaryPoint>& bp) {
+// A patch's planar domain: the closed polygon through its loop's points, in order, then the
+// segments of its inner curves (segment i of the PSLG is addSplitSample's segment i).
+planar::Pslg patchPslg(const std::vector<BoundaryPoint>& bp, const std::vector<InnerSegment>& inner) {
   planar::Pslg pslg;
   for (const auto& b : bp) pslg.points.insert(pslg.points.end(), {b.x, b.y});
-  for (uint32_t i = 0; i < bp.size(); ++i) pslg.segments.insert(pslg.segments.end(), {i, uint32_t((i + 1) % bp.size())});
+  const uint32_t loop = uint32_t(loopPointCount(bp));
+  for (uint32_t i = 0; i < loop; ++i) pslg.segments.insert(pslg.segments.end(), {i, uint32_t((i + 1) % loop)});
+  for (const InnerSegment& sg : inner) pslg.segments.insert(pslg.segments.end(), {sg.a, sg.b});
   return pslg;
 }
 
-// The segments of a closed boundary polygon that cross another one (or fold back onto their
-// neighbour), by exact orientation tests over all pairs: only used when refinement rejected the
+// The segments of a patch's domain that cross another one (or fold back onto a segment they
+// share an end with), by exact orientation tests over all pairs: only used when refinement rejected the
 // polygon, which is rare.
 std::vector<uint32_t> crossingSegments(const planar::Pslg& pslg) {
   const uint32_t n = uint32_t(pslg.segments.size() / 2);
@@ -244,6 +249,7 @@ void cornerChains(const Surface& surf, const Meshing& m, const PatchWork& w, con
     return v != kNone && v < m.smallCorner.size() && m.smallCorner[v];
   };
   const auto& loop = w.pm.boundaryLoops[0];
+  const size_t loopPoints = loopPointCount(bp);  // the corners' wedges are on the loop
   // The patch's own wedge at a boundary point, in 3D (the angle sum of its faces at that sub
   // vertex) and in the plane (the polygon's inner angle there). A small corner can have wider
   // wedges beside its small one (two curves at 31° where another pair meets at 22°): where such a
@@ -257,7 +263,7 @@ void cornerChains(const Surface& surf, const Meshing& m, const PatchWork& w, con
       for (int c = 0; c < 3; ++c)
         if (w.pm.mesh.triangles[3 * f + c] == sub) sum += surf.g.cornerAngle(w.pm.faceInput[f], c);
     if (sum * 180.0 / kPi < boundDeg) return true;
-    const size_t n = bp.size();
+    const size_t n = loopPoints;
     const BoundaryPoint &a = bp[(i + n - 1) % n], &b = bp[i], &c = bp[(i + 1) % n];
     double area2 = 0;  // twice the polygon's signed area: the inner side of the boundary
     for (size_t k = 0; k < n; ++k) area2 += bp[k].x * bp[(k + 1) % n].y - bp[(k + 1) % n].x * bp[k].y;
@@ -269,14 +275,14 @@ void cornerChains(const Surface& surf, const Meshing& m, const PatchWork& w, con
   };
   std::vector<uint32_t> apexSamples;  // the small corners on this patch's boundary, and their boundary points
   std::vector<uint32_t> apexPoint;
-  for (uint32_t i = 0; i < bp.size(); ++i)
+  for (uint32_t i = 0; i < loopPoints; ++i)
     if (corner(bp[i].sample) && std::find(apexSamples.begin(), apexSamples.end(), bp[i].sample) == apexSamples.end() &&
         smallWedge(i))
       apexSamples.push_back(bp[i].sample), apexPoint.push_back(i);
   if (apexSamples.empty()) return;
   apexOf.assign(points, planar::kNoApex);
   chainOf.assign(points, planar::kNoApex);
-  for (uint32_t i = 0; i < bp.size(); ++i) {
+  for (uint32_t i = 0; i < loopPoints; ++i) {
     const F::CurveSample& smp = cm.samples[bp[i].sample];
     if (smp.vertex != kNone && surf.seg.vertexCorner[smp.vertex]) continue;  // a corner ends every chain
     const auto& h = loop[bp[i].loopPos];
@@ -302,10 +308,11 @@ void cornerChains(const Surface& surf, const Meshing& m, const PatchWork& w, con
 // `out` (see refineApart). False, with the refinement's error in `crossing`, when the chords
 // between bp cross (the refinement rejects the polygon: InvalidPslg); other errors are thrown.
 bool refineAndLift(const Surface& surf, const RemeshOptions& opt, const Meshing& m, uint32_t p, bool splitSegments,
-                   const std::vector<BoundaryPoint>& bp, PatchMeshing& out, Status& crossing) {
+                   const std::vector<BoundaryPoint>& bp, const std::vector<InnerSegment>& inner, PatchMeshing& out,
+                   Status& crossing) {
   const Clock::time_point start = Clock::now();
   const PatchWork& w = *m.patches[p];
-  planar::Pslg pslg = boundaryPslg(bp);
+  planar::Pslg pslg = patchPslg(bp, inner);
   pslg.points.insert(pslg.points.end(), w.requiredPoints.begin(), w.requiredPoints.end());
   planar::RefineOptions ro;
   // Diametral lenses: far fewer segment splits, so fewer samples a neighbour must take up and
@@ -382,8 +389,8 @@ bool refineAndLift(const Surface& surf, const RemeshOptions& opt, const Meshing&
   out.splits.clear();
   int lastFace = -1;
   for (size_t v = bp.size(); v < nv; ++v) {
-    // every segment is a boundary chord (the required points are free), so a Steiner vertex on
-    // a segment is a boundary split (segment i joins boundary points i and i + 1): a curve
+    // every segment is a chord of the loop or of an inner curve (the required points are free),
+    // so a Steiner vertex on a segment is a curve split (patchPslg's segment order): a curve
     // sample made at the patch's turn (finishMeshing)
     if (const int32_t sg = pmsh.vertexSegment[v]; sg >= 0) {
       out.splits.push_back({uint32_t(v), uint32_t(sg), pmsh.vertexParam[v]});
@@ -423,7 +430,7 @@ void finishMeshing(const Surface& surf, Meshing& m, uint32_t p, PatchMeshing& r,
   w.localToGlobal.assign(nv, kNone);
   for (size_t v = 0; v < r.bp.size(); ++v) w.localToGlobal[v] = r.bp[v].sample;
   for (const PatchMeshing::Split& sp : r.splits)
-    w.localToGlobal[sp.vertex] = addSplitSample(surf, m.samples, m.patches, w, r.bp, sp.segment, sp.t);
+    w.localToGlobal[sp.vertex] = addSplitSample(surf, m.samples, m.patches, w, r.bp, r.inner, sp.segment, sp.t);
   w.interiorPositions = std::move(r.interiorPositions);
   w.layoutFaces = std::move(r.layoutFaces);
   w.liftFaces = std::move(r.liftFaces);
@@ -438,13 +445,13 @@ void finishMeshing(const Surface& surf, Meshing& m, uint32_t p, PatchMeshing& r,
 
 PatchMeshing refineApart(const Surface& surf, const RemeshOptions& opt, const Meshing& m, uint32_t p, bool splitSegments) {
   PatchMeshing r;
-  r.bp = boundaryPoints(surf, m.samples, *m.patches[p]);
+  r.bp = boundaryPoints(surf, m.samples, *m.patches[p], &r.inner);
   if (degenerateBoundary(r.bp)) {
     r.needsRepair = true;
     return r;
   }
   Status crossing;
-  r.needsRepair = !refineAndLift(surf, opt, m, p, splitSegments, r.bp, r, crossing);
+  r.needsRepair = !refineAndLift(surf, opt, m, p, splitSegments, r.bp, r.inner, r, crossing);
   return r;
 }
 
@@ -458,7 +465,7 @@ void meshPatch(const Surface& surf, const RemeshOptions& opt, Meshing& m, uint32
   PatchWork& w = *m.patches[p];
   startMeshing(m, p);
   PatchMeshing r;
-  r.bp = boundaryPoints(surf, m.samples, w);
+  r.bp = boundaryPoints(surf, m.samples, w, &r.inner);
   std::vector<BoundaryPoint>& bp = r.bp;
   // A small patch bounded by short curves can have fewer than 3 boundary samples, or only
   // collinear ones (two curves between the same two corners): add a sample in the middle of the
@@ -467,36 +474,37 @@ void meshPatch(const Surface& surf, const RemeshOptions& opt, Meshing& m, uint32
   for (int guard = 0; guard < 8 && degenerateBoundary(bp); ++guard) {
     size_t longest = 0;
     double best = -1;
-    for (size_t i = 0; i < bp.size(); ++i) {
+    const size_t loopPoints = loopPointCount(bp);
+    for (size_t i = 0; i < loopPoints; ++i) {
       // its length along the flattened boundary
       double len = 0;
       const auto& loop = w.pm.boundaryLoops[0];
-      for (const Piece& pc : stretch(w, bp[i], bp[(i + 1) % bp.size()], bp.size())) {
+      for (const Piece& pc : stretch(w, bp[i], bp[(i + 1) % loopPoints], loopPoints)) {
         const auto& h = loop[pc.k];
         uint32_t va = w.pm.mesh.triangles[3 * h.face + h.corner], vb = w.pm.mesh.triangles[3 * h.face + (h.corner + 1) % 3];
         len += (pc.t1 - pc.t0) * dmath::hypot(w.flat.uv[2 * vb] - w.flat.uv[2 * va], w.flat.uv[2 * vb + 1] - w.flat.uv[2 * va + 1]);
       }
       if (len > best) best = len, longest = i;
     }
-    addSplitSample(surf, m.samples, m.patches, w, bp, uint32_t(longest), 0.5);
+    addSplitSample(surf, m.samples, m.patches, w, bp, r.inner, uint32_t(longest), 0.5);
     w.builtAt = ++m.samples.stamp;
     w.dirty = false;
-    bp = boundaryPoints(surf, m.samples, w);
+    bp = boundaryPoints(surf, m.samples, w, &r.inner);
   }
   if (degenerateBoundary(bp)) fail(Code::InternalError, Stage::Refine, "patch " + std::to_string(p) + ": its boundary samples do not make a polygon");
   for (int attempt = 0;; ++attempt) {
     Status rejected;
-    if (refineAndLift(surf, opt, m, p, splitSegments, bp, r, rejected)) break;
+    if (refineAndLift(surf, opt, m, p, splitSegments, bp, r.inner, r, rejected)) break;
     if (attempt >= kCrossingRepairs) fail(rejected.code, rejected.stage, rejected.message);
     // The chords between boundary samples cross where the boundary doubles back within a sample
     // spacing: split the crossing chords (shared with the neighbours like any segment split)
     // and try again.
-    const std::vector<uint32_t> crossing = crossingSegments(boundaryPslg(bp));
+    const std::vector<uint32_t> crossing = crossingSegments(patchPslg(bp, r.inner));
     if (crossing.empty()) fail(Code::InternalError, Stage::Refine, "patch " + std::to_string(p) + ": invalid boundary, but no chords cross");
-    for (uint32_t sg : crossing) addSplitSample(surf, m.samples, m.patches, w, bp, sg, 0.5);
+    for (uint32_t sg : crossing) addSplitSample(surf, m.samples, m.patches, w, bp, r.inner, sg, 0.5);
     w.builtAt = ++m.samples.stamp;
     w.dirty = false;
-    bp = boundaryPoints(surf, m.samples, w);
+    bp = boundaryPoints(surf, m.samples, w, &r.inner);
   }
   finishMeshing(surf, m, p, r, busy);
 }
@@ -546,6 +554,7 @@ OptimizeResult optimizeMesh(const Surface& surf, const RemeshOptions& opt, const
   oo.minAngleDeg = opt.minAngle;
   oo.maxIterations = opt.optimizeIterations;
   oo.tolerance = opt.optimizeTolerance;
+  oo.keepFixedEdges = !w.inner.empty();
   // the planar refinement left the interior triangles below the bound and its margin: passes
   // aimed at those still below the bound in 3D, the valence operations and one pass more (the
   // moves even out the stars the flips and collapses change)

@@ -23,10 +23,11 @@ void meshPatch(const Surface& surf, const RemeshOptions& opt, Meshing& m, uint32
 struct PatchMeshing {
   struct Split {
     uint32_t vertex;   //!< planar vertex on boundary segment `segment` (from bp[segment] to the next)
-    uint32_t segment;
+    uint32_t segment;  //!< of the patch's domain (addSplitSample's numbering)
     double t;          //!< its parameter along the segment
   };
   std::vector<BoundaryPoint> bp;  //!< the patch's boundary points it was made from
+  std::vector<InnerSegment> inner;  //!< the segments of its inner curves (curve_samples.h)
   //! bp make no polygon, or their chords cross: meshPatch repairs them by adding samples, which
   //! cannot be made apart
   bool needsRepair = false;

@@ -19,7 +19,7 @@ bool sameBoundary(const std::vector<BoundaryPoint>& a, const std::vector<Boundar
   if (a.size() != b.size()) return false;
   for (size_t i = 0; i < a.size(); ++i)
     if (a[i].sample != b[i].sample || a[i].loopPos != b[i].loopPos || a[i].param != b[i].param || a[i].x != b[i].x ||
-        a[i].y != b[i].y)
+        a[i].y != b[i].y || a[i].inner != b[i].inner)
       return false;
   return true;
 }

@@ -40,6 +40,9 @@ struct OptimizeOptions {
   //! smallest angle is bounded by 360° over its vertex's triangle count: the 7-valent vertices
   //! of a Delaunay refinement hold the mean min angle near 51° whatever the moves do.
   bool valenceOperations = false;
+  //! No edge between two fixed vertices flips or splits: the patch has constrained segments
+  //! inside it (an inner curve's, remesh/curve_samples.h), which such an edge may be.
+  bool keepFixedEdges = false;
 };
 
 struct OptimizeStats {

@@ -83,10 +83,18 @@ struct Surface {
   const MeshBuffers& graphMesh() const { return preconditioned ? pre.mesh : vm.buffers; }
 };
 
+//! A curve inside a patch (Segmentation::isInnerCurve): the patch's sub-mesh vertex at each of
+//! its vertices, so its planar polyline is the layout's uv there.
+struct InnerCurve {
+  uint32_t curve;
+  std::vector<uint32_t> sub;  //!< sub[i]: curve vertex i (the curve's vertices.size() of them)
+};
+
 //! One patch: its sub-mesh, flattening, sizing, and its latest meshing.
 struct PatchWork {
   F::PatchMesh pm;
   FlatPatch flat;
+  std::vector<InnerCurve> inner;  //!< its inner curves, by curve id (remesh/curve_samples.h)
   std::vector<double> hSub;      // 3D target length per sub vertex
   std::vector<double> scaleSub;  // planar length per 3D length, per sub vertex
   std::vector<Spot> spots;       // where the 3D angle certificate asks for smaller planar triangles

@@ -49,6 +49,7 @@ Surface prepareSurface(ValidatedMesh vm, const MeshBuffers& input, const RemeshO
   fo.featureAngleDeg = opt.featureAngle;
   fo.cornerTurnDeg = opt.cornerTurn;
   fo.angleBoundDeg = opt.minAngle;
+  fo.innerCreases = opt.innerCreases;
   std::vector<std::array<uint32_t, 2>> userFeatures;
   for (const auto& e : opt.featureEdges) {
     if (e[0] >= surf.vm.inputToVertex.size() || e[1] >= surf.vm.inputToVertex.size())

@@ -379,3 +379,58 @@ TEST_CASE("remesh: a ramp winding two and a half turns is split where its flat m
   CHECK(r.report.minAngle >= o.minAngle);
   CHECK(r.report.topologyPreserved);
 }
+
+// A crease that ends inside a region (FeatureOptions::innerCreases) is a constrained polyline in
+// its patch's planar domain: a flat square with three such chains is one patch, every chain is
+// made of output edges (the optimization neither flips nor splits them), and the bound holds.
+TEST_CASE("remesh: creases ending inside a flat square stay inside its one patch") {
+  const int n = 20;
+  testshapes::Builder b;
+  auto at = [&](int i, int j) { return b.vertex(double(i) / n, double(j) / n, 0); };
+  for (int i = 0; i < n; ++i)
+    for (int j = 0; j < n; ++j) {
+      b.tri(at(i, j), at(i + 1, j), at(i + 1, j + 1));
+      b.tri(at(i, j), at(i + 1, j + 1), at(i, j + 1));
+    }
+  RemeshOptions o;
+  o.targetEdgeLengthRel = 0.03;
+  o.hausdorffSamples = 2000;
+  for (int i = 6; i < 14; ++i) o.featureEdges.push_back({at(i, 10), at(i + 1, 10)});  // inside, straight
+  for (int i = 0; i < 8; ++i) o.featureEdges.push_back({at(i, 4), at(i + 1, 4)});     // from the border in
+  for (int i = 12; i < 16; ++i) o.featureEdges.push_back({at(i, 15), at(i + 1, 15)});  // an L inside
+  for (int j = 15; j < 18; ++j) o.featureEdges.push_back({at(16, j), at(16, j + 1)});
+  o.innerCreases = true;
+  const RemeshResult inner = checkRemesh(b.m, o, "inner creases");
+  CHECK(inner.report.patches == 1);
+  CHECK(inner.report.featureCurves >= 4);  // the border, the three chains (the L's corner parts it)
+  // each chain's input vertices are output vertices joined by output edges along the chain
+  std::set<std::pair<long long, long long>> onChain;
+  for (size_t t = 0; t < inner.mesh.triangles.size(); t += 3)
+    for (int c = 0; c < 3; ++c) {
+      const uint32_t u = inner.mesh.triangles[t + c], v = inner.mesh.triangles[t + (c + 1) % 3];
+      const double* p = &inner.mesh.positions[3 * size_t(u)];
+      const double* q = &inner.mesh.positions[3 * size_t(v)];
+      if (std::abs(p[1] - 0.5) < 1e-12 && std::abs(q[1] - 0.5) < 1e-12)
+        onChain.insert({std::llround(std::min(p[0], q[0]) * 1e9), std::llround(std::max(p[0], q[0]) * 1e9)});
+    }
+  double covered = 0;
+  for (const auto& [lo, hi] : onChain) covered += double(hi - lo) * 1e-9;
+  CHECK(covered == doctest::Approx(0.4).epsilon(1e-9));
+  // without: each chain is continued until it closes a part off
+  o.innerCreases = false;
+  const RemeshResult closed = checkRemesh(b.m, o, "creases continued");
+  CHECK(closed.report.patches > 1);
+}
+
+// ChineseDragon-10kv: its creases as detected close one region; continued from their ends they
+// close 63 (73 patches after flattening). Kept inside their patches they cut nothing.
+TEST_CASE("remesh: ChineseDragon-10kv with inner creases: fewer patches, every curve kept, the bound held") {
+  ReadResult rr = readMesh(test::readFile(std::string(CONFORMESH_DATA_DIR) + "/ChineseDragon-10kv.off"));
+  RemeshOptions o;
+  o.hausdorffSamples = 5000;
+  o.innerCreases = true;
+  const RemeshResult r = checkRemesh(rr.mesh, o, "ChineseDragon-10kv inner", false);
+  CHECK(r.report.patches <= 64);
+  CHECK(r.report.featureCurves > 50);
+  CHECK(r.report.meanMinAngle >= 50.0);
+}
