@@ -197,11 +197,12 @@ BestRound meshRounds(const Surface& surf, const RemeshOptions& opt, const Progre
     // best round once): otherwise the rounds go on to their cap (ChineseDragon-10kv at 35°: after
     // two stale rounds the repair left a cut sample's corner at 30°; four more rounds and the
     // repair left none; docs/decisions/0042).
-    // And before any round: where the repair alone lifts every triangle the best round has below
-    // the bound, a round's smaller triangles there are triangles for nothing (ChineseDragon-10kv
-    // with inner creases: 4,300 more for a round whose bad triangles the repair mends).
+    // And before the first certificate round: where the repair alone lifts every triangle the
+    // first round has below the bound, a round's smaller triangles there are triangles for
+    // nothing (ChineseDragon-10kv with inner creases: 4,300 more for a round whose bad triangles
+    // the repair mends). Not after every round: each trial costs a repair.
     if (better) repairTried = false;
-    if (bestDoubled == 0 && bestBad > 0 && repairLeft && !repairTried) {
+    if (bestDoubled == 0 && bestBad > 0 && repairLeft && !repairTried && (cert == 0 || staleRounds >= 2)) {
       repairTried = true;
       if (repairLeftOnBest() == 0) break;
     }
