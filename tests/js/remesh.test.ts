@@ -95,6 +95,28 @@ describe('remesh', () => {
     }
   });
 
+  it('innerCreases: a crease ending inside a flat square stays inside its one patch, kept as output edges', async () => {
+    const n = 20;
+    const positions: number[] = [];
+    const triangles: number[] = [];
+    const at = (i: number, j: number) => i * (n + 1) + j;
+    for (let i = 0; i <= n; ++i) for (let j = 0; j <= n; ++j) positions.push(i / n, j / n, 0);
+    for (let i = 0; i < n; ++i) {
+      for (let j = 0; j < n; ++j) triangles.push(at(i, j), at(i + 1, j), at(i + 1, j + 1), at(i, j), at(i + 1, j + 1), at(i, j + 1));
+    }
+    const featureEdges: number[] = [];
+    for (let i = 6; i < 14; ++i) featureEdges.push(at(i, 10), at(i + 1, 10));
+    const input = { positions: new Float64Array(positions), triangles: new Uint32Array(triangles) };
+    const options = { targetEdgeLengthRel: 0.03, hausdorffSamples: 1000, featureEdges };
+    const inner = await remesh(input, { ...options, innerCreases: true });
+    expect(inner.report.patches).toBe(1);
+    expect(inner.report.featureCurvesKept).toBe(inner.report.featureCurves);
+    expect(inner.report.featureCurves).toBe(5); // the square's four sides and the crease
+    expect(inner.report.trianglesBelowBoundOutsideExempt).toBe(0);
+    const continued = await remesh(input, options);
+    expect(continued.report.patches).toBeGreaterThan(1);
+  });
+
   it('reports progress monotone in [0, 1], cancels quickly, and fails with InvalidArgument / EmptyMesh', async () => {
     const cm = await init();
     const fractions: number[] = [];
