@@ -577,12 +577,13 @@ bool closeInnerCreases(const EdgeGraph& g, Segmentation& seg, uint32_t p) {
   for (uint32_t c = 0; c < seg.curves.size(); ++c)
     if (seg.isInnerCurve(c) && seg.curves[c].patches[0] == p)
       for (const uint32_t v : {seg.curves[c].vertices.front(), seg.curves[c].vertices.back()}) tips.push_back(v);
-  for (const uint32_t v : tips)
-    for (uint32_t k = g.vertexEdgeStart[v]; k < g.vertexEdgeStart[v + 1]; ++k) valence[v] += seg.isCurveEdge(g.vertexEdgeIds[k]);
-  tips.erase(std::remove_if(tips.begin(), tips.end(), [&](uint32_t v) { return valence[v] != 1; }), tips.end());
-  if (tips.empty()) return false;
   std::sort(tips.begin(), tips.end());
   tips.erase(std::unique(tips.begin(), tips.end()), tips.end());
+  for (const uint32_t v : tips)
+    for (uint32_t k = g.vertexEdgeStart[v]; k < g.vertexEdgeStart[v + 1]; ++k) valence[v] += seg.isCurveEdge(g.vertexEdgeIds[k]);
+  // the dangling ends (one curve edge): a junction of inner curves or an end on the border is none
+  tips.erase(std::remove_if(tips.begin(), tips.end(), [&](uint32_t v) { return valence[v] != 1; }), tips.end());
+  if (tips.empty()) return false;
   const std::vector<uint32_t> region = seg.patches[p];
   extendDanglingCurves(g, seg, tips);
   rebuildCurves(g, seg);
