@@ -573,16 +573,19 @@ bool splitPatch(const EdgeGraph& g, Segmentation& seg, uint32_t p, uint32_t part
 
 bool closeInnerCreases(const EdgeGraph& g, Segmentation& seg, uint32_t p) {
   if (!seg.innerCreases || p >= seg.patches.size()) return false;
-  std::vector<uint32_t> valence(g.vertexCount, 0), tips;
+  std::vector<uint32_t> tips;
   for (uint32_t c = 0; c < seg.curves.size(); ++c)
     if (seg.isInnerCurve(c) && seg.curves[c].patches[0] == p)
       for (const uint32_t v : {seg.curves[c].vertices.front(), seg.curves[c].vertices.back()}) tips.push_back(v);
   std::sort(tips.begin(), tips.end());
   tips.erase(std::unique(tips.begin(), tips.end()), tips.end());
-  for (const uint32_t v : tips)
-    for (uint32_t k = g.vertexEdgeStart[v]; k < g.vertexEdgeStart[v + 1]; ++k) valence[v] += seg.isCurveEdge(g.vertexEdgeIds[k]);
   // the dangling ends (one curve edge): a junction of inner curves or an end on the border is none
-  tips.erase(std::remove_if(tips.begin(), tips.end(), [&](uint32_t v) { return valence[v] != 1; }), tips.end());
+  const auto dangling = [&](uint32_t v) {
+    uint32_t valence = 0;
+    for (uint32_t k = g.vertexEdgeStart[v]; k < g.vertexEdgeStart[v + 1]; ++k) valence += seg.isCurveEdge(g.vertexEdgeIds[k]);
+    return valence == 1;
+  };
+  tips.erase(std::remove_if(tips.begin(), tips.end(), [&](uint32_t v) { return !dangling(v); }), tips.end());
   if (tips.empty()) return false;
   const std::vector<uint32_t> region = seg.patches[p];
   extendDanglingCurves(g, seg, tips);

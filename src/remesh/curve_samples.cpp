@@ -164,16 +164,16 @@ uint32_t addSplitSample(const Surface& surf, CurveSamples& cs, Patches& patches,
   // or of an inner curve
   const bool onLoop = s < loopPoints;
   if (!onLoop && s - loopPoints >= inner.size()) fail(Code::InternalError, Stage::Refine, "a split on no segment of the patch");
-  const BoundaryPoint& p0 = onLoop ? bp[s] : bp[inner[s - loopPoints].a];
-  const BoundaryPoint& p1 = onLoop ? bp[(s + 1) % loopPoints] : bp[inner[s - loopPoints].b];
+  const InnerSegment* sg = onLoop ? nullptr : &inner[s - loopPoints];
+  const InnerCurve* ic = onLoop ? nullptr : &w.inner[sg->inner];
+  const BoundaryPoint& p0 = onLoop ? bp[s] : bp[sg->a];
+  const BoundaryPoint& p1 = onLoop ? bp[(s + 1) % loopPoints] : bp[sg->b];
   std::vector<Piece> pieces;
-  const InnerCurve* ic = onLoop ? nullptr : &w.inner[inner[s - loopPoints].inner];
   if (onLoop) {
     pieces = stretch(w, p0, p1, loopPoints);
   } else {
-    const InnerSegment& sg = inner[s - loopPoints];
-    for (uint32_t i = uint32_t(sg.ka); i + 1 < ic->sub.size() && double(i) < sg.kb; ++i)
-      pieces.push_back({i, std::max(0.0, sg.ka - double(i)), std::min(1.0, sg.kb - double(i))});
+    for (uint32_t i = uint32_t(sg->ka); i + 1 < ic->sub.size() && double(i) < sg->kb; ++i)
+      pieces.push_back({i, std::max(0.0, sg->ka - double(i)), std::min(1.0, sg->kb - double(i))});
   }
   // the sub-mesh vertices at a piece's ends and the input edge it lies on, with its first vertex
   const auto pieceEnds = [&](uint32_t kk, uint32_t& a, uint32_t& b, uint32_t& e, uint32_t& A) {

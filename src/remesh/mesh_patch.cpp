@@ -140,22 +140,22 @@ double slabHalfWidth(const F::PatchMesh& pm) {
 
 // Fewer than 3 samples on the boundary loop, or all of them on one line (relative to their
 // spread).
-bool degenerateBoundary(const std::vector<BoundaryPoint>& all) {
-  const std::vector<BoundaryPoint> bp(all.begin(), all.begin() + long(loopPointCount(all)));
-  if (bp.size() < 3) return true;
+bool degenerateBoundary(const std::vector<BoundaryPoint>& bp) {
+  const size_t n = loopPointCount(bp);  // the loop's points come first
+  if (n < 3) return true;
   double minx = INFINITY, miny = INFINITY, maxx = -INFINITY, maxy = -INFINITY;
-  for (const auto& b : bp) minx = std::min(minx, b.x), maxx = std::max(maxx, b.x), miny = std::min(miny, b.y), maxy = std::max(maxy, b.y);
+  for (size_t i = 0; i < n; ++i) minx = std::min(minx, bp[i].x), maxx = std::max(maxx, bp[i].x), miny = std::min(miny, bp[i].y), maxy = std::max(maxy, bp[i].y);
   const double span = std::max(maxx - minx, maxy - miny);
   if (!(span > 0)) return true;
   // the point farthest from the line through the first point and the point farthest from it
   size_t far = 0;
   double d2 = 0;
-  for (size_t i = 1; i < bp.size(); ++i) {
+  for (size_t i = 1; i < n; ++i) {
     double dd = sq(bp[i].x - bp[0].x) + sq(bp[i].y - bp[0].y);
     if (dd > d2) d2 = dd, far = i;
   }
   double ex = bp[far].x - bp[0].x, ey = bp[far].y - bp[0].y, l = std::sqrt(d2), off = 0;
-  for (const auto& b : bp) off = std::max(off, std::abs((b.x - bp[0].x) * ey - (b.y - bp[0].y) * ex) / l);
+  for (size_t i = 0; i < n; ++i) off = std::max(off, std::abs((bp[i].x - bp[0].x) * ey - (bp[i].y - bp[0].y) * ex) / l);
   return off < 1e-6 * span;
 }
 

@@ -77,8 +77,8 @@ SplitStats splitBelowBound(std::vector<double>& xy, std::vector<uint32_t>& trian
         }
         size_t tu;
         int cu;
-        if (!findEdge(triangles, e[1], e[0], tu, cu)) continue;  // a boundary edge: never split
         if (o.keepFixedEdges && fixed[e[0]] && fixed[e[1]]) continue;  // maybe an inner curve's
+        if (!findEdge(triangles, e[1], e[0], tu, cu)) continue;  // a boundary edge: never split
         size_t ta;
         int ca;
         findEdge(triangles, e[0], e[1], ta, ca);
