@@ -4,6 +4,7 @@
 #include <chrono>
 #include <cmath>
 #include <complex>
+#include <map>
 #include <string>
 
 #include "conformal/intrinsic_triangulation.h"
@@ -86,6 +87,17 @@ namespace {
 FlatPatch flattenCompact(const MeshBuffers& patch, const FlattenOptions& options, const ProgressFn& progress);
 }
 
+double edgeSurfaceParam(const std::vector<double>& u, uint32_t a, uint32_t b, double t) {
+  // e^{u_a}, e^{u_b} over the larger of the two: no overflow whatever u is
+  const double ea = dmath::exp(std::min(0.0, u[a] - u[b])), eb = dmath::exp(std::min(0.0, u[b] - u[a]));
+  return t * eb / ((1.0 - t) * ea + t * eb);
+}
+
+double edgePlanarParam(const std::vector<double>& u, uint32_t a, uint32_t b, double s) {
+  const double ea = dmath::exp(std::min(0.0, u[a] - u[b])), eb = dmath::exp(std::min(0.0, u[b] - u[a]));
+  return s * ea / (s * ea + (1.0 - s) * eb);
+}
+
 FlatPatch flatten(const MeshBuffers& patch, const FlattenOptions& options, ProgressFn progress) {
   // Vertices no face uses carry no metric: flatten without them and give them uv = (0, 0).
   const size_t nV = patch.vertexCount();
@@ -110,6 +122,9 @@ FlatPatch flatten(const MeshBuffers& patch, const FlattenOptions& options, Progr
   FlattenOptions o = options;
   for (auto& c : o.corners)
     if (c.first < nV && newId[c.first] >= 0) c.first = uint32_t(newId[c.first]);
+  for (auto& e : o.keepEdges)
+    for (uint32_t& v : e)
+      if (v < nV && newId[v] >= 0) v = uint32_t(newId[v]);
   FlatPatch P = flattenCompact(compact, o, progress);
   std::vector<double> uv(2 * nV, 0.0), u(nV, 0.0), pos(3 * nV, 0.0);
   for (size_t w = 0; w < used; ++w) {
@@ -239,6 +254,17 @@ FlatPatch flattenCompact(const MeshBuffers& patch, const FlattenOptions& options
   using namespace conformal;
   const auto t0 = Clock::now();
   IntrinsicTriangulation T = buildIntrinsicTriangulation(patch);
+  if (!options.keepEdges.empty()) {
+    std::map<std::pair<int, int>, int> edgeOf;
+    for (int h = 0; h < 3 * T.nF; ++h) edgeOf.emplace(std::make_pair(T.vert[h], T.tip(h)), T.edge[h]);
+    T.locked.assign(size_t(T.nE), 0);
+    for (const auto& k : options.keepEdges) {
+      const auto it = edgeOf.find({int(k[0]), int(k[1])});
+      if (it == edgeOf.end() || T.twin[T.edgeHalf[it->second]] < 0)
+        fail(Code::InvalidArgument, Stage::Flatten, "flatten: an edge to keep is no interior edge of the mesh");
+      T.locked[size_t(it->second)] = 1;
+    }
+  }
   // Start from the intrinsic Delaunay triangulation of the input metric (Euclidean flips keep
   // the PL metric), as Gillespie–Springborn–Crane 2021: the conformal structure is then that of
   // the surface, not of its tessellation (a flat patch maps to itself however it is meshed).

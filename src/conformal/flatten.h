@@ -40,6 +40,10 @@ struct FlattenOptions {
   //! Circle: among the Möbius-equivalent solutions, return the one whose 3D-area-weighted
   //! vertex centroid is the disk centre (fixed-point iteration; lowers the area distortion).
   bool balanceMobius = true;
+  //! Mesh edges (vertex pairs) no flip may remove, so each stays a straight segment of the
+  //! layout (a patch's inner curves: remesh/curve_samples.h). The triangulation is then the
+  //! constrained intrinsic Delaunay one. A pair that is no interior edge is InvalidArgument.
+  std::vector<std::array<uint32_t, 2>> keepEdges;
 };
 
 struct FlattenReport {
@@ -104,6 +108,16 @@ void finishPullback(FlatPatch& flat);
 //! InconsistentOrientation, InvalidTopology, InvalidArgument, IterationLimit, NotConverged,
 //! NumericalFailure, Cancelled.
 FlatPatch flatten(const MeshBuffers& patch, const FlattenOptions& options = {}, ProgressFn progress = {});
+
+//! Along an input edge the flips left in place (on the boundary, or kept by
+//! FlattenOptions::keepEdges), the pull-back is the projective map of that edge: the point at
+//! parameter t of the planar edge from vertex a to b lands at parameter
+//! s = t e^{u_b} / ((1 − t) e^{u_a} + t e^{u_b}) of the input edge (the barycentrics weighted by
+//! e^u, as the pull-back's overlay takes them; Springborn, Schröder and Pinkall 2008, §4). Where
+//! u_a = u_b it is affine. u: FlatPatch::u.
+double edgeSurfaceParam(const std::vector<double>& u, uint32_t a, uint32_t b, double t);
+//! Its inverse: the planar parameter of the point at parameter s of the input edge from a to b.
+double edgePlanarParam(const std::vector<double>& u, uint32_t a, uint32_t b, double s);
 
 //! Corners for BoundaryCondition::Corners: the vertices of the outer boundary loop (the longest)
 //! whose 3D interior angle differs from pi by more than `threshold` radians, with that angle as

@@ -22,7 +22,7 @@ double cornerHoro(const IntrinsicTriangulation& T, int g) { return T.cornerSize(
 bool IntrinsicTriangulation::canFlip(int e) const {
   const int h = edgeHalf[e];
   const int t = twin[h];
-  return t >= 0 && t / 3 != h / 3;
+  return t >= 0 && t / 3 != h / 3 && (locked.empty() || !locked[size_t(e)]);
 }
 
 double IntrinsicTriangulation::cornerSize(int g) const {

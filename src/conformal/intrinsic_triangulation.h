@@ -29,6 +29,7 @@ struct IntrinsicTriangulation {
   std::vector<int> edgeHalf;    //!< per edge: one of its halfedges
   std::vector<double> lambda;   //!< per edge: base log length 2 log l (Penner coordinate)
   std::vector<int> origin;      //!< per edge: input edge index, -1 once flipped
+  std::vector<char> locked;     //!< per edge: never flipped (empty: none is locked)
   //! What the per-halfedge positions measure: horocycle arc length (decorated hyperbolic
   //! metric, kept by Ptolemy flips) or angle (Euclidean metric, kept by Euclidean flips).
   enum class PositionKind { Horocyclic, Angular };

@@ -5,6 +5,7 @@
 #include <cmath>
 #include <unordered_map>
 
+#include "conformal/flatten.h"
 #include "core/detmath.h"
 
 namespace conformesh::pipeline {
@@ -114,7 +115,10 @@ std::vector<BoundaryPoint> boundaryPoints(const Surface& surf, const CurveSample
         point = it->second;
       } else {
         const uint32_t a = ic.sub[i], b = ic.sub[i + 1];
-        out.push_back({ids[q], i, t, uv[2 * a] + t * (uv[2 * b] - uv[2 * a]), uv[2 * a + 1] + t * (uv[2 * b + 1] - uv[2 * a + 1]), j});
+        // the flattening's map along the edge is projective (conformal/flatten.h): the point
+        // at t on the input edge is at tp on the planar one
+        const double tp = edgePlanarParam(w.flat.u, a, b, t);
+        out.push_back({ids[q], i, t, uv[2 * a] + tp * (uv[2 * b] - uv[2 * a]), uv[2 * a + 1] + tp * (uv[2 * b + 1] - uv[2 * a + 1]), j});
       }
       if (prev != kNone && inner) inner->push_back({prev, point, j, prevKey, key});
       prev = point;
@@ -188,9 +192,11 @@ uint32_t addSplitSample(const Surface& surf, CurveSamples& cs, Patches& patches,
       A = surf.seg.curves[ic->curve].vertices[kk];
     }
   };
+  // the planar point at parameter tt of piece kk's input edge (from its first vertex)
   auto pieceUv = [&](uint32_t kk, double tt, double& x, double& y) {
     uint32_t a, b, e, A;
     pieceEnds(kk, a, b, e, A);
+    if (!onLoop) tt = edgePlanarParam(w.flat.u, a, b, tt);
     x = uv[2 * a] + tt * (uv[2 * b] - uv[2 * a]);
     y = uv[2 * a + 1] + tt * (uv[2 * b + 1] - uv[2 * a + 1]);
   };
@@ -208,9 +214,14 @@ uint32_t addSplitSample(const Surface& surf, CurveSamples& cs, Patches& patches,
   size_t i = 0;
   while (i + 1 < pieces.size() && acc + len[i] < target) acc += len[i++];
   double local = len[i] > 0 ? std::clamp((target - acc) / len[i], 0.0, 1.0) : 0.5;
-  double th = pieces[i].t0 + local * (pieces[i].t1 - pieces[i].t0);
   uint32_t ea, eb, e, A;
   pieceEnds(pieces[i].k, ea, eb, e, A);
+  // that fraction of the piece's planar length, on the input edge
+  double th = pieces[i].t0 + local * (pieces[i].t1 - pieces[i].t0);
+  if (!onLoop) {
+    const double q0 = edgePlanarParam(w.flat.u, ea, eb, pieces[i].t0), q1 = edgePlanarParam(w.flat.u, ea, eb, pieces[i].t1);
+    th = edgeSurfaceParam(w.flat.u, ea, eb, q0 + local * (q1 - q0));
+  }
   F::CurveSample smp;
   smp.edge = e;
   smp.t = surf.g.edgeVerts[e][0] == A ? th : 1.0 - th;

@@ -205,6 +205,14 @@ void tryConditions(const F::Segmentation& seg, const std::vector<BoundaryConditi
     FlattenOptions fo;
     fo.boundary = bc;
     fo.deferPullback = true;  // built once the patch is kept (flattenPatches' end)
+    // an inner curve's edges stay edges of the layout: each is then a straight segment in the
+    // plane, on which the pull-back is the projective map of that one edge (curve_samples.cpp).
+    // Flipped away, an edge is a bent path in the plane: the chord between two of its samples
+    // strays from it, and the pull-back of a point beside the chord lands across the crease
+    // (elk at --feature-angle 20 --edge-length-rel 0.02: triangles below the bound beside inner
+    // curves that each certificate round made smaller and more numerous, 39 s).
+    for (const InnerCurve& ic : f.w->inner)
+      for (size_t i = 0; i + 1 < ic.sub.size(); ++i) fo.keepEdges.push_back({ic.sub[i], ic.sub[i + 1]});
     if (bc == BoundaryCondition::Corners) {
       f.corners = boundaryCorners(seg, f.w->pm);
       f.cornersTried = true;
@@ -270,6 +278,7 @@ Flattening flattenOne(const Surface& surf, const RemeshOptions& opt, const std::
     f.w = std::make_unique<PatchWork>();
     f.w->pm = F::extractPatch(surf.g, mask, faces);
     if (!f.w->pm.isDisk()) fail(Code::InternalError, Stage::Flatten, "a patch is not a disk after cutting");
+    f.w->inner = innerCurves(surf, f.w->pm);
     tryConditions(surf.seg, conditionOrder(opt.boundary), faces.size(), f);
     if (f.flattened) measureScale(surf, opt, f);
   } catch (...) {
@@ -473,6 +482,8 @@ Patches flattenPatches(Surface& surf, const RemeshOptions& opt, const Progress& 
     if (split) continue;
     Patches work;
     for (const auto& faces : surf.seg.patches) work.push_back(std::move(cache.at(keyOf(faces))));
+    // the same edges as at its flattening (the patch and its cuts are the same), under the curve
+    // ids of the final segmentation
     for (auto& w : work) w->inner = innerCurves(surf, w->pm);
     // the pull-backs of the flattenings kept (most of those made were dropped for a cut)
     parallelFor(work.size(), unsigned(opt.threads), [&](size_t i) { finishPullback(work[i]->flat); });

@@ -313,6 +313,62 @@ TEST_CASE("flatten: bad input gets a clear status") {
   catch (const Error& e) { CHECK(e.code() == Code::IterationLimit); }
 }
 
+TEST_CASE("flatten: kept edges stay straight in the layout, the pull-back projective along them") {
+  // a twisted cap: skinny triangles whose edges the intrinsic Delaunay flips replace, and a
+  // scale factor u that varies along every spoke
+  const int rings = 10, m = 40;
+  const MeshBuffers M = testmesh::sphericalCap(rings, m, 1.3, 0.35);
+  const auto id = [&](int k, int j) { return uint32_t(1 + (k - 1) * m + (j % m)); };
+  std::vector<std::array<uint32_t, 2>> spoke;  // (k, j) -> (k + 1, j): an edge of the mesh
+  for (int j = 0; j < m; j += 5)
+    for (int k = 1; k < rings; ++k) spoke.push_back({id(k, j), id(k + 1, j)});
+  // the worst distance, over the spoke edges, from the pull-back of points of each planar edge
+  // to the point edgeSurfaceParam gives on the input edge, relative to the edge's length; and
+  // the same to the affine point
+  const auto offEdge = [&](const FlatPatch& P, double& affine) {
+    double worst = 0;
+    affine = 0;
+    for (const auto& [a, b] : spoke) {
+      const double* A = &M.positions[3 * size_t(a)];
+      const double* B = &M.positions[3 * size_t(b)];
+      const double len = std::sqrt((B[0] - A[0]) * (B[0] - A[0]) + (B[1] - A[1]) * (B[1] - A[1]) + (B[2] - A[2]) * (B[2] - A[2]));
+      for (double t = 0.1; t < 0.95; t += 0.2) {
+        PullbackPoint q;
+        REQUIRE(P.pullback.locate(P.uv[2 * a] + t * (P.uv[2 * b] - P.uv[2 * a]), P.uv[2 * a + 1] + t * (P.uv[2 * b + 1] - P.uv[2 * a + 1]), q));
+        const double s = edgeSurfaceParam(P.u, a, b, t);
+        double d = 0, da = 0;
+        for (int k = 0; k < 3; ++k) {
+          d += (q.position[k] - (A[k] + s * (B[k] - A[k]))) * (q.position[k] - (A[k] + s * (B[k] - A[k])));
+          da += (q.position[k] - (A[k] + t * (B[k] - A[k]))) * (q.position[k] - (A[k] + t * (B[k] - A[k])));
+        }
+        worst = std::max(worst, std::sqrt(d) / len);
+        affine = std::max(affine, std::sqrt(da) / len);
+        CHECK(edgePlanarParam(P.u, a, b, s) == doctest::Approx(t).epsilon(1e-12));
+      }
+    }
+    return worst;
+  };
+  FlattenOptions o;
+  o.boundary = BoundaryCondition::Free;
+  double affine = 0;
+  const double unkept = offEdge(flatten(M, o), affine);
+  o.keepEdges = spoke;
+  const FlatPatch P = flatten(M, o);
+  CHECK(P.report.invertedTriangles == 0);
+  const double kept = offEdge(P, affine);
+  std::printf("kept edges: off the edge %.2e kept, %.2e not kept; affine placement %.2e\n", kept, unkept, affine);
+  CHECK(kept <= 1e-9);
+  CHECK(unkept > 1e-3);  // flipped away: the planar chord is not the edge's image
+  CHECK(affine > 1e-3);  // u varies along the spokes: the affine point is not the pull-back's
+  // an edge to keep must be an interior edge of the mesh
+  o.keepEdges = {{id(rings, 0), id(rings, 1)}};
+  try { flatten(M, o); FAIL("expected InvalidArgument"); }
+  catch (const Error& e) { CHECK(e.code() == Code::InvalidArgument); }
+  o.keepEdges = {{0, id(rings, 0)}};
+  try { flatten(M, o); FAIL("expected InvalidArgument"); }
+  catch (const Error& e) { CHECK(e.code() == Code::InvalidArgument); }
+}
+
 namespace {
 // Interior angle of the laid-out outer loop at its i-th vertex (domain on the left).
 double layoutAngle(const FlatPatch& P, size_t i) {
