@@ -6,6 +6,7 @@
 #include <cmath>
 #include <numeric>
 #include <string>
+#include <unordered_map>
 
 #include "core/detmath.h"
 #include "core/hilbert.h"
@@ -554,7 +555,22 @@ OptimizeResult optimizeMesh(const Surface& surf, const RemeshOptions& opt, const
   oo.minAngleDeg = opt.minAngle;
   oo.maxIterations = opt.optimizeIterations;
   oo.tolerance = opt.optimizeTolerance;
-  oo.keepFixedEdges = !w.inner.empty();
+  // the inner curves' segments: consecutive samples of each (all in this patch)
+  if (!w.inner.empty()) {
+    std::unordered_map<uint32_t, uint32_t> localOf;
+    for (uint32_t v = 0; v < nv; ++v)
+      if (fixed[v]) localOf.emplace(w.localToGlobal[v], v);
+    for (const InnerCurve& ic : w.inner) {
+      const auto& ids = samples.cm.curveSamples[ic.curve];
+      for (size_t i = 0; i + 1 < ids.size(); ++i) {
+        const auto a = localOf.find(ids[i]), b = localOf.find(ids[i + 1]);
+        if (a == localOf.end() || b == localOf.end())
+          fail(Code::InternalError, Stage::Optimize, "an inner curve's sample is not in its patch's meshing");
+        oo.keptEdges.push_back(optimization::keptEdgeKey(a->second, b->second));
+      }
+    }
+    std::sort(oo.keptEdges.begin(), oo.keptEdges.end());
+  }
   // the planar refinement left the interior triangles below the bound and its margin: passes
   // aimed at those still below the bound in 3D, the valence operations and one pass more (the
   // moves even out the stars the flips and collapses change)

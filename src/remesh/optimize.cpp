@@ -96,7 +96,7 @@ struct Mesh {
   // the valence operations (OptimizeOptions::valenceOperations): per vertex its triangle count
   // and the count its planar angle sum asks for (6 inside the patch); empty when off
   std::vector<int> deg, ideal;
-  bool keepFixedEdges = false;  // OptimizeOptions::keepFixedEdges
+  const OptimizeOptions* options = nullptr;  // for keptEdge
 
   const double* p(uint32_t v) const { return &xy[2 * size_t(v)]; }
   double triMin(uint32_t t) const {
@@ -505,7 +505,7 @@ size_t flipPass(Mesh& m, std::vector<uint8_t>& touched, const std::vector<uint8_
       uint32_t* v0 = &m.tri[3 * size_t(t0)];
       const uint32_t x = v0[c], y = v0[kNext[c]], c0 = v0[kPrev[c]];
       if (!(region[x] || region[y])) continue;
-      if (m.keepFixedEdges && m.fixed[x] && m.fixed[y]) continue;
+      if (m.fixed[x] && m.fixed[y] && keptEdge(*m.options, x, y)) continue;
       // t0 = (x, y, c0) counter-clockwise; t1 holds the edge as y -> x
       uint32_t* v1 = &m.tri[3 * size_t(t1)];
       const int d = cornerOf(v1, y);  // v1[d] = y, v1[d+1] = x
@@ -686,6 +686,10 @@ double meanMin(const Mesh& m) {
 
 }  // namespace
 
+bool keptEdge(const OptimizeOptions& o, uint32_t a, uint32_t b) {
+  return !o.keptEdges.empty() && std::binary_search(o.keptEdges.begin(), o.keptEdges.end(), keptEdgeKey(a, b));
+}
+
 double minAngleDeg3(const Vec3& a, const Vec3& b, const Vec3& c) { return cornerDeg(smallestCorner(a, b, c)); }
 
 double minAngleDeg3Approx(const Vec3& a, const Vec3& b, const Vec3& c) { return cornerDegApprox(smallestCorner(a, b, c)); }
@@ -694,7 +698,7 @@ OptimizeStats optimizePatch(std::vector<double>& xy, std::vector<uint32_t>& tria
                             const std::vector<uint8_t>& fixed, const LiftFn& lift, const OptimizeOptions& o,
                             const std::vector<uint8_t>& active0, const SurfaceSamples& guard, OptimizeCache* cache) {
   Mesh m{xy, triangles, pos, fixed, {}, {}, {}, {}, nullptr, {}, {}, {}, {}, {}, {}, {}};
-  m.keepFixedEdges = o.keepFixedEdges;
+  m.options = &o;
   OptimizeStats st;
   const size_t nt = triangles.size() / 3;
   // the previous call's min angles stand where no vertex moved since (the same positions give

@@ -40,10 +40,17 @@ struct OptimizeOptions {
   //! smallest angle is bounded by 360° over its vertex's triangle count: the 7-valent vertices
   //! of a Delaunay refinement hold the mean min angle near 51° whatever the moves do.
   bool valenceOperations = false;
-  //! No edge between two fixed vertices flips or splits: the patch has constrained segments
-  //! inside it (an inner curve's, remesh/curve_samples.h), which such an edge may be.
-  bool keepFixedEdges = false;
+  //! Edges that neither flip nor split: the constrained segments inside the patch (an inner
+  //! curve's, remesh/curve_samples.h), each as keptEdgeKey(a, b), sorted. Any other edge between
+  //! two fixed vertices may go (a chord across the wedge between two inner curves), and in a patch
+  //! with such segments a triangle of three fixed vertices may be split on such a chord.
+  std::vector<uint64_t> keptEdges;
 };
+
+//! The key of edge (a, b) in OptimizeOptions::keptEdges (either order).
+inline uint64_t keptEdgeKey(uint32_t a, uint32_t b) { return a < b ? (uint64_t(a) << 32 | b) : (uint64_t(b) << 32 | a); }
+//! Edge (a, b) is one of o.keptEdges.
+bool keptEdge(const OptimizeOptions& o, uint32_t a, uint32_t b);
 
 struct OptimizeStats {
   int iterations = 0;

@@ -65,7 +65,8 @@ SplitStats splitBelowBound(std::vector<double>& xy, std::vector<uint32_t>& trian
       const uint32_t s = v[c], next = v[(c + 1) % 3], prev = v[(c + 2) % 3];
       // three boundary vertices: a strip between curves, or an input corner's wedge, which the
       // refinement leaves as the curves force it
-      if (fixed[v[0]] && fixed[v[1]] && fixed[v[2]]) continue;
+      // (in a patch with inner curves, a chord between two of them may be split: tried below)
+      if (fixed[v[0]] && fixed[v[1]] && fixed[v[2]] && o.keptEdges.empty()) continue;
       // an input corner: a boundary vertex with less than the bound in the whole patch
       if (fixed[s] && wedgeAt(triangles, pos, s) < bound) continue;
       // the two edges at the smallest corner, as directed in t
@@ -77,7 +78,7 @@ SplitStats splitBelowBound(std::vector<double>& xy, std::vector<uint32_t>& trian
         }
         size_t tu;
         int cu;
-        if (o.keepFixedEdges && fixed[e[0]] && fixed[e[1]]) continue;  // maybe an inner curve's
+        if (fixed[e[0]] && fixed[e[1]] && keptEdge(o, e[0], e[1])) continue;  // an inner curve's segment
         if (!findEdge(triangles, e[1], e[0], tu, cu)) continue;  // a boundary edge: never split
         size_t ta;
         int ca;

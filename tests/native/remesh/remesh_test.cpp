@@ -435,3 +435,21 @@ TEST_CASE("remesh: ChineseDragon-10kv with inner creases: fewer patches, every c
   CHECK(r.report.featureCurves > 50);
   CHECK(r.report.meanMinAngle >= 50.0);
 }
+
+// elk at a 20° feature angle: a patch with twelve inner curves, four of them meeting at a saddle
+// (angle sum 432°, 35° between two of them) whose flattening shrinks those wedges. The triangles
+// there have three curve samples: the optimization must be free to split a chord between two
+// curves (only the curves' own segments are kept), and each sample's planar point must pull back
+// onto the sample (the edges kept in the flattening, the projective map along them), or the
+// certificate rounds shrink those triangles round after round.
+TEST_CASE("remesh: elk at a 20 degree feature angle with inner creases holds the bound") {
+  ReadResult rr = readMesh(test::readFile(std::string(CONFORMESH_DATA_DIR) + "/elk.off"));
+  RemeshOptions o;
+  o.hausdorffSamples = 5000;
+  o.innerCreases = true;
+  o.featureAngle = 20;
+  o.targetEdgeLengthRel = 0.02;
+  const RemeshResult r = checkRemesh(rr.mesh, o, "elk inner 20", false);
+  CHECK(r.report.meanMinAngle >= 50.0);
+  CHECK(double(r.report.triangles) <= 1.33 * r.report.estimatedTriangles);
+}
