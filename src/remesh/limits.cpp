@@ -25,10 +25,16 @@ void requireLimit(double value, const char* name) {
          std::string(name) + " must be >= 1 (0 does not mean unlimited: pass a huge value to lift the limit)");
 }
 
+// How fast the refinement's sizes grow away from a thin feature, per unit of distance: slower
+// than the sizing's gradation lets them (its off-centers grade the band; measured on the rim of a
+// thin slab, tests/native/remesh/limits_test.cpp: 0.35 with the 50° off-center apex, 0.38 with
+// 45°; docs/decisions/0045).
+constexpr double kRefinementGrading = 0.4;
+
 // The part of ∫ 1/h² that the thin features add to the field (see estimateOutput).
 double thinFeatureIntegral(const features::EdgeGraph& g, const features::Segmentation& seg,
                            const features::SizingField& sizing) {
-  const double k = sizing.gradation - 1.0;
+  const double k = std::min(sizing.gradation - 1.0, kRefinementGrading);
   const std::vector<std::array<double, 2>> width = features::patchWidths(g, seg, sizing.maxLength);
   double sum = 0;
   for (uint32_t e = 0; e < g.edgeCount(); ++e) {

@@ -20,8 +20,14 @@ namespace {
 
 //! x² as one product (std::pow(x, 2) goes through libm in some builds).
 inline double sq(double x) { return x * x; }
-// Degrees added to the angle bound for the planar refinement (see meshPatch).
-constexpr double kPlanarAngleMargin = 2.0;
+// Degrees added to the angle bound for the planar refinement (see meshPatch). Each degree above
+// 30 costs the off-center refinement steeply in graded regions (its quality splits cascade there:
+// ChineseDragon-10kv 1.25 → 1.05 times its estimate from 2° to 1°), and the optimization lifts the
+// triangles the lift's distortion takes below the bound (docs/decisions/0045).
+constexpr double kPlanarAngleMargin = 1.0;
+// The margin of the triangles whose three vertices are samples, which the optimization cannot
+// move: the whole distortion of the lift (≤ ~2°, docs/decisions/0010).
+constexpr double kFixedTriangleMargin = 2.0;
 // Highest bound of the planar refinement but for the triangles the optimization cannot move:
 // above it the off-center refinement's count grows steeply (camelhead at 34°: 1.76 times its
 // count at 32°), while the optimization lifts the other triangles to a higher 3D bound.
@@ -34,10 +40,10 @@ inline bool aboveMaxPlanar(double minAngle) { return minAngle + kPlanarAngleMarg
 // with them, in fewer certificate rounds).
 constexpr int kBoundPasses = 8;
 // Angle (degrees) at the new vertex of the triangle an off-center (Üngör 2009) makes with the
-// shortest edge of a bad triangle: halfway between the bound and equilateral, so graded bands do
-// not stay at the bound, while the new vertex stays 1.3 edges away and insertion radii still grow
-// (docs/decisions/0012-offcenter-apex.md).
-constexpr double kOffcenterApexDeg = 45.0;
+// shortest edge of a bad triangle: well above the bound, so graded bands do not stay at it, while
+// the new vertex stays 1 / (2 sin 25°) ≈ 1.18 edges away and insertion radii still grow
+// (docs/decisions/0012-offcenter-apex.md; 50° rather than 45° with the 1° margin, 0045).
+constexpr double kOffcenterApexDeg = 50.0;
 // The same above kPlanarMaxDeg (a 3D bound of 35°): nearer equilateral there, where the
 // optimization must lift every free triangle above the bound and its moves and valence
 // operations start from the refinement's shapes (mean min angle at 35° on the 19 models of
@@ -322,11 +328,12 @@ bool refineAndLift(const Surface& surf, const RemeshOptions& opt, const Meshing&
   // models in ../shared/data with the free boundary).
   ro.diametralLens = true;
   ro.splitSegments = splitSegments;
-  // Above kPlanarMaxDeg, the bound and its margin hold in the plane only for the triangles whose
-  // three vertices are boundary samples (RefineOptions::segmentTriangleMinAngleDeg), which the
-  // optimization cannot move; it lifts the others in 3D (optimizeMesh).
+  // The triangles whose three vertices are boundary samples (RefineOptions::
+  // segmentTriangleMinAngleDeg), which the optimization cannot move, get the whole margin of the
+  // lift; above kPlanarMaxDeg the bound holds in the plane only for them, and the optimization
+  // lifts the others in 3D (optimizeMesh).
   ro.minAngleDeg = std::min(opt.minAngle + kPlanarAngleMargin, kPlanarMaxDeg);
-  ro.segmentTriangleMinAngleDeg = opt.minAngle + kPlanarAngleMargin;
+  ro.segmentTriangleMinAngleDeg = opt.minAngle + kFixedTriangleMargin;
   // off-center factor for the apex angle: the off-center of factor f sits f / (2 tan(θ/2))
   // shortest-edge lengths from that edge, where it sees the edge under 2 atan(tan(θ/2) / f)
   // (refine.h); never above the planar default (bounds near 45° would otherwise get it)
