@@ -44,7 +44,7 @@ mkdir -p "$OUT/obj" "$OUT/bin" "$OUT/seeds" "$OUT/corpus" "$OUT/artifacts" "$OUT
   "$ROOT/tests/data/fuzz-regressions-remesh"
 
 SAN="-fsanitize=address,undefined -fno-sanitize-recover=all"
-CXXFLAGS="-std=c++17 -O1 -g -fno-omit-frame-pointer -I$ROOT/src -isystem /usr/include/eigen3"
+CXXFLAGS="-std=c++17 -O1 -g -fno-omit-frame-pointer -I$ROOT/include -I$ROOT/src -isystem /usr/include/eigen3"
 
 # ---- build: the readers (and what they use) instrumented for coverage --------------------------
 echo "== fuzz: building with $CXX (ASan + UBSan + libFuzzer)"
