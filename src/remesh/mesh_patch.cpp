@@ -22,8 +22,9 @@ namespace {
 inline double sq(double x) { return x * x; }
 // Degrees added to the angle bound for the planar refinement (see meshPatch). Each degree above
 // 30 costs the off-center refinement steeply in graded regions (its quality splits cascade there:
-// ChineseDragon-10kv 1.25 → 1.05 times its estimate from 2° to 1°), and the optimization lifts the
-// triangles the lift's distortion takes below the bound (docs/decisions/0045).
+// ChineseDragon-10kv 1.25 → 1.05 times its estimate from 2° to 1° with 45° off-centers), and the
+// optimization lifts the triangles the lift's distortion takes below the bound
+// (docs/decisions/0045).
 constexpr double kPlanarAngleMargin = 1.0;
 // The margin of the triangles whose three vertices are samples, which the optimization cannot
 // move: the whole distortion of the lift (≤ ~2°, docs/decisions/0010).
