@@ -87,14 +87,23 @@ namespace {
 FlatPatch flattenCompact(const MeshBuffers& patch, const FlattenOptions& options, const ProgressFn& progress);
 }
 
+namespace {
+// e^{u_a} and e^{u_b} over the larger of the two: no overflow whatever u is
+void edgeWeights(const std::vector<double>& u, uint32_t a, uint32_t b, double& ea, double& eb) {
+  ea = dmath::exp(std::min(0.0, u[a] - u[b]));
+  eb = dmath::exp(std::min(0.0, u[b] - u[a]));
+}
+}  // namespace
+
 double edgeSurfaceParam(const std::vector<double>& u, uint32_t a, uint32_t b, double t) {
-  // e^{u_a}, e^{u_b} over the larger of the two: no overflow whatever u is
-  const double ea = dmath::exp(std::min(0.0, u[a] - u[b])), eb = dmath::exp(std::min(0.0, u[b] - u[a]));
+  double ea, eb;
+  edgeWeights(u, a, b, ea, eb);
   return t * eb / ((1.0 - t) * ea + t * eb);
 }
 
 double edgePlanarParam(const std::vector<double>& u, uint32_t a, uint32_t b, double s) {
-  const double ea = dmath::exp(std::min(0.0, u[a] - u[b])), eb = dmath::exp(std::min(0.0, u[b] - u[a]));
+  double ea, eb;
+  edgeWeights(u, a, b, ea, eb);
   return s * ea / (s * ea + (1.0 - s) * eb);
 }
 
