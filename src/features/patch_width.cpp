@@ -25,6 +25,12 @@ std::vector<std::array<double, 2>> patchWidths(const EdgeGraph& g, const Segment
   for (uint32_t e = 0; e < g.edgeCount(); ++e) {
     const auto& ef = g.edgeFaces[e];
     const uint32_t p0 = seg.facePatch[ef[0]], p1 = ef[1] == kNone ? kNone : seg.facePatch[ef[1]];
+    if (p0 == p1 && seg.edgeCurve[e] != kNone && seg.isInnerCurve(seg.edgeCurve[e])) {
+      // an inner curve: a constraint inside its patch, sampled as a border is, on both sides
+      border[p0].push_back({e, 0});
+      border[p0].push_back({e, 1});
+      continue;
+    }
     if (p0 == p1) continue;
     border[p0].push_back({e, 0});
     if (p1 != kNone) border[p1].push_back({e, 1});
@@ -46,6 +52,15 @@ std::vector<std::array<double, 2>> patchWidths(const EdgeGraph& g, const Segment
       const double len = norm(b - a);
       if (len == 0) continue;
       const Vec3 m = (a + b) * 0.5, te = (b - a) * (1.0 / len);
+      // on an inner curve, only what lies on this side: towards the side's face from the edge
+      const bool inner = seg.edgeCurve[e] != kNone && seg.isInnerCurve(seg.edgeCurve[e]);
+      Vec3 toFace{};
+      if (inner) {
+        const auto& fv = g.faces[g.edgeFaces[e][side]];
+        const uint32_t o = fv[0] != ev[0] && fv[0] != ev[1] ? fv[0] : fv[1] != ev[0] && fv[1] != ev[1] ? fv[1] : fv[2];
+        toFace = g.positions[o] - m;
+        toFace = toFace - te * dot(toFace, te);
+      }
       const quality::ClosestHit hit = tree.closest(m, [&](uint32_t i, const Vec3& p) {
         const uint32_t f = edges[i].first;
         const auto& fv = g.edgeVerts[f];
@@ -55,6 +70,7 @@ std::vector<std::array<double, 2>> patchWidths(const EdgeGraph& g, const Segment
         const Vec3 y = quality::closestPointOnSegment(p, c, d), across = y - p;
         const double dist = norm(across);
         if (lf == 0 || dist == 0) return kInf;
+        if (inner && !(dot(across, toFace) > 0)) return kInf;
         if (std::abs(dot(across, te)) > kAcrossCos * dist) return kInf;
         if (std::abs(dot(across, d - c)) > kAcrossCos * dist * lf) return kInf;
         return dist * dist;

@@ -13,7 +13,9 @@ namespace conformesh::features {
 
 //! Per input edge e and side s (the face edgeFaces[e][s]): the distance from e's midpoint to the
 //! nearest boundary edge of the same patch that lies across from it, or +infinity where there is
-//! none within maxDistance (and for edges inside a patch, and sides without a face).
+//! none within maxDistance (and for edges inside a patch, and sides without a face). An inner
+//! curve's edges (Segmentation::isInnerCurve) count as boundary edges on both sides, each side
+//! measured to what lies on that side: the refinement samples them as it samples a border.
 //! "Across": the segment joining the midpoint to its closest point on the other edge is within
 //! 60° of the normal of both edges. The next edges along a smooth curve fail that test, and so
 //! do the edges of another curve meeting e's curve at a corner wider than 30°; both sides of a

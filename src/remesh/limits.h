@@ -37,7 +37,8 @@ constexpr double kTrianglesPerEquilateral = 1.3;
 //!               - the field as computed, Σ over input faces f of area(f) / (√3/4 · h_f²), with
 //!                 1/h_f² the mean of 1/h² at the face's corners;
 //!               - the grading the angle bound needs at thin features: where a patch is narrower
-//!                 across from a boundary edge than h there (features/patch_width.h), the
+//!                 across from a boundary edge or an inner curve than h there
+//!                 (features/patch_width.h), the
 //!                 refinement samples the edge at that width w and grows the sizes away from it
 //!                 at the field's gradation slope k, up to h or halfway across the patch. The
 //!                 excess over h of that field, integrated in closed form along the edge and

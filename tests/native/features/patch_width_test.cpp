@@ -54,3 +54,34 @@ TEST_CASE("patchWidths: the next edges along a curve and a right-angle corner ar
   for (uint32_t e = 0; e < g.edgeCount(); ++e)
     for (int s = 0; s < 2; ++s) CHECK(std::isinf(width[e][s]));
 }
+
+TEST_CASE("patchWidths: an inner curve is sampled as a border is, each side measured to what lies on it") {
+  // a flat square with an inner crease along y = 0.1 from x = 0.3 to 0.7: below it the border
+  // y = 0 is 0.1 away, above it the border y = 1 is 0.9 away (beyond the 0.5 searched)
+  const int n = 20;
+  const EdgeGraph g = buildEdgeGraph(testshapes::square(n));
+  const auto vertexAt = [&](double x, double y) {
+    for (uint32_t v = 0; v < g.vertexCount; ++v)
+      if (std::abs(g.positions[v].x - x) < 1e-12 && std::abs(g.positions[v].y - y) < 1e-12) return v;
+    return kNone;
+  };
+  FeatureOptions o;
+  o.innerCreases = true;
+  for (int i = 6; i < 14; ++i) o.featureEdges.push_back({vertexAt(double(i) / n, 2.0 / n), vertexAt(double(i + 1) / n, 2.0 / n)});
+  const Segmentation seg = segment(g, o);
+  REQUIRE(seg.patches.size() == 1);
+  const auto width = patchWidths(g, seg, 0.5);
+  int inner = 0;
+  for (const auto& fe : o.featureEdges) {
+    const uint32_t e = g.findEdge(fe[0], fe[1]);
+    REQUIRE(seg.isInnerCurve(seg.edgeCurve[e]));
+    for (int s = 0; s < 2; ++s) {
+      const auto& fv = g.faces[g.edgeFaces[e][s]];
+      const bool below = g.positions[fv[0]].y + g.positions[fv[1]].y + g.positions[fv[2]].y < 0.3;  // centroid below 0.1
+      if (below) CHECK(width[e][s] == doctest::Approx(0.1).epsilon(1e-9));
+      else CHECK(std::isinf(width[e][s]));
+    }
+    ++inner;
+  }
+  CHECK(inner == 8);
+}
