@@ -21,6 +21,15 @@ bool onCurve(const EdgeGraph& g, const Segmentation& seg, uint32_t v) {
   return false;
 }
 
+// v is on patch p's border: on a curve other than an inner one (Segmentation::isInnerCurve).
+bool onBorder(const EdgeGraph& g, const Segmentation& seg, uint32_t v) {
+  for (uint32_t k = g.vertexEdgeStart[v]; k < g.vertexEdgeStart[v + 1]; ++k) {
+    const uint32_t e = g.vertexEdgeIds[k];
+    if (seg.isCurveEdge(e) && !seg.isInnerCurve(seg.edgeCurve[e])) return true;
+  }
+  return false;
+}
+
 // Edge e may carry the cut: on no curve, and beside patch p (both its faces in p, or, for the
 // last step onto the border, one of them).
 bool stepAllowed(const EdgeGraph& g, const Segmentation& seg, uint32_t e, uint32_t p, bool toBorder) {
@@ -56,11 +65,27 @@ std::vector<std::pair<uint32_t, double>> ringAngles(const EdgeGraph& g, uint32_t
   return ring;
 }
 
-// The shortest path (input edges, from `sink`) inside patch p to the first vertex on a curve,
-// whose first step goes to a vertex of `firstSteps` and which avoids the vertices of `avoid`;
-// empty when there is none. Ties broken by vertex index, so the path is deterministic.
+// Where a cut's path may end: at any curve (Curve); at p's border, keeping off its inner curves
+// (Border: a path ending on an inner curve parts nothing); at one of given vertices, keeping off
+// every curve (Target).
+enum class PathEnd { Curve, Border, Target };
+
+// The shortest path (input edges, from `sink`) inside patch p to the first vertex where it may
+// end (`end`; `targets` for PathEnd::Target), whose first step goes to a vertex of `firstSteps`
+// and which avoids the vertices of `avoid`; empty when there is none. Ties broken by vertex
+// index, so the path is deterministic.
 std::vector<uint32_t> pathToBorder(const EdgeGraph& g, const Segmentation& seg, uint32_t p, uint32_t sink,
-                                   const std::vector<uint32_t>& firstSteps, const std::vector<uint32_t>& avoid) {
+                                   const std::vector<uint32_t>& firstSteps, const std::vector<uint32_t>& avoid,
+                                   PathEnd end = PathEnd::Curve, const std::vector<uint32_t>& targets = {}) {
+  const auto isEnd = [&](uint32_t v) {
+    return end == PathEnd::Curve    ? onCurve(g, seg, v)
+           : end == PathEnd::Border ? onBorder(g, seg, v)
+                                    : std::find(targets.begin(), targets.end(), v) != targets.end();
+  };
+  const auto allowed = [&](uint32_t e, uint32_t w) {
+    const bool last = end != PathEnd::Target && isEnd(w);
+    return (last || !onCurve(g, seg, w)) && stepAllowed(g, seg, e, p, last);
+  };
   struct Item {
     double d;
     uint32_t v;
@@ -72,23 +97,23 @@ std::vector<uint32_t> pathToBorder(const EdgeGraph& g, const Segmentation& seg, 
   best[sink] = {0.0, kNone};
   for (uint32_t w : firstSteps) {
     const uint32_t e = g.findEdge(sink, w);
-    if (e == kNone || best.count(w) || !stepAllowed(g, seg, e, p, onCurve(g, seg, w))) continue;
+    if (e == kNone || best.count(w) || !allowed(e, w)) continue;
     best[w] = {g.edgeLength(e), sink};
     pq.push({g.edgeLength(e), w});
   }
-  uint32_t end = kNone;
+  uint32_t last = kNone;
   while (!pq.empty()) {
     const Item it = pq.top();
     pq.pop();
     if (it.d > best[it.v].first) continue;
-    if (onCurve(g, seg, it.v)) {
-      end = it.v;
+    if (isEnd(it.v)) {
+      last = it.v;
       break;
     }
     for (uint32_t k = g.vertexEdgeStart[it.v]; k < g.vertexEdgeStart[it.v + 1]; ++k) {
       const uint32_t e = g.vertexEdgeIds[k];
       const uint32_t w = g.otherVertex(e, it.v);
-      if (!stepAllowed(g, seg, e, p, onCurve(g, seg, w))) continue;
+      if (!allowed(e, w)) continue;
       const double d = it.d + g.edgeLength(e);
       auto found = best.find(w);
       if (found != best.end() && !(d < found->second.first)) continue;
@@ -97,7 +122,7 @@ std::vector<uint32_t> pathToBorder(const EdgeGraph& g, const Segmentation& seg, 
     }
   }
   std::vector<uint32_t> path;
-  for (uint32_t v = end; v != kNone; v = v == sink ? kNone : best[v].second) path.push_back(v);
+  for (uint32_t v = last; v != kNone; v = v == sink ? kNone : best[v].second) path.push_back(v);
   std::reverse(path.begin(), path.end());
   return path;
 }
@@ -139,27 +164,15 @@ bool applyCuts(const EdgeGraph& g, Segmentation& seg, uint32_t p, const std::vec
   return ok;
 }
 
-// cutThroughSink and cutThroughSpike: `balanced` asks the second path to leave at least 3/8 of
-// the angle sum away from the first, else it leaves through the most opposite neighbour.
-bool cutThroughVertex(const EdgeGraph& g, Segmentation& seg, uint32_t p, uint32_t sink, double minWedge, bool balanced, double minDepth) {
-  if (p >= seg.patches.size() || sink >= g.vertexCount || onCurve(g, seg, sink)) return false;
+// The neighbours of interior vertex v a path through v may leave by when it arrives from
+// neighbour `from`: at least 3/8 of v's angle sum round from it (`balanced`), else the most
+// opposite one; each side keeps minWedge. Empty when v has no closed fan.
+std::vector<uint32_t> oppositeSteps(const EdgeGraph& g, uint32_t v, uint32_t from, double minWedge, bool balanced) {
   double theta = 0;
-  const auto ring = ringAngles(g, sink, theta);
-  if (ring.empty()) return false;
-  std::vector<uint32_t> all;
-  for (const auto& r : ring) all.push_back(r.first);
-  const std::vector<uint32_t> first = pathToBorder(g, seg, p, sink, all, {});
-  if (first.size() < 2) return false;
-  if (minDepth > 0) {  // the nearest border is the first path's end
-    double depth = 0;
-    for (size_t i = 0; i + 1 < first.size(); ++i) depth += norm(g.positions[first[i + 1]] - g.positions[first[i]]);
-    if (depth < minDepth) return false;
-  }
+  const auto ring = ringAngles(g, v, theta);
   double a1 = 0;
   for (const auto& [w, a] : ring)
-    if (w == first[1]) a1 = a;
-  // the second path leaves the sink roughly opposite the first, or through the most opposite
-  // neighbour that leaves each side minWedge
+    if (w == from) a1 = a;
   std::vector<uint32_t> opposite;
   double mostAround = 0;
   uint32_t most = kNone;
@@ -169,16 +182,78 @@ bool cutThroughVertex(const EdgeGraph& g, Segmentation& seg, uint32_t p, uint32_
     if (around >= minWedge && around > mostAround) mostAround = around, most = w;
   }
   if (!balanced && most != kNone) opposite.push_back(most);
-  const std::vector<uint32_t> avoid(first.begin() + 1, first.end());
-  const std::vector<uint32_t> second = pathToBorder(g, seg, p, sink, opposite, avoid);
-  if (second.size() < 2) return false;
-  return applyCuts(g, seg, p, {&first, &second});
+  return opposite;
+}
+
+// cutThroughSink and cutThroughSpike: `balanced` asks each path to leave a vertex it passes at
+// least 3/8 of the angle sum away from where it came, else through the most opposite neighbour.
+// `others`: further sinks the cut may pass through on its way back to the border (each the
+// nearest left); `end` where its paths may end.
+bool cutThroughVertex(const EdgeGraph& g, Segmentation& seg, uint32_t p, uint32_t sink, double minWedge, bool balanced,
+                      double minDepth, std::vector<uint32_t> others, PathEnd end) {
+  if (p >= seg.patches.size() || sink >= g.vertexCount || onCurve(g, seg, sink)) return false;
+  double theta = 0;
+  const auto ring = ringAngles(g, sink, theta);
+  if (ring.empty()) return false;
+  std::vector<uint32_t> all;
+  for (const auto& r : ring) all.push_back(r.first);
+  const std::vector<uint32_t> first = pathToBorder(g, seg, p, sink, all, {}, end);
+  if (first.size() < 2) return false;
+  if (minDepth > 0) {  // the nearest border is the first path's end
+    double depth = 0;
+    for (size_t i = 0; i + 1 < first.size(); ++i) depth += norm(g.positions[first[i + 1]] - g.positions[first[i]]);
+    if (depth < minDepth) return false;
+  }
+  // The way back from the sink: through the other sinks, each left opposite where the cut came
+  // from, then to the border, each leg avoiding what the cut took before. One cut then puts
+  // several sinks on the border (a hand's finger tips: its two halves, as a glove is sewn) where
+  // a cut per sink would make a patch per sink.
+  std::vector<std::vector<uint32_t>> legs{first};
+  std::vector<uint32_t> avoid(first.begin() + 1, first.end());
+  others.erase(std::remove_if(others.begin(), others.end(), [&](uint32_t v) { return v == sink || onCurve(g, seg, v); }), others.end());
+  for (uint32_t at = sink, from = first[1];;) {
+    const std::vector<uint32_t> opposite = oppositeSteps(g, at, from, minWedge, balanced);
+    std::vector<uint32_t> leg = others.empty() ? std::vector<uint32_t>{} : pathToBorder(g, seg, p, at, opposite, avoid, PathEnd::Target, others);
+    const bool toSink = leg.size() >= 2;
+    if (!toSink) leg = pathToBorder(g, seg, p, at, opposite, avoid, end);
+    if (leg.size() < 2) break;
+    avoid.insert(avoid.end(), leg.begin(), leg.end());
+    legs.push_back(std::move(leg));
+    if (!toSink) break;
+    at = legs.back().back();
+    from = legs.back()[legs.back().size() - 2];
+    others.erase(std::find(others.begin(), others.end(), at));
+  }
+  const bool back = legs.size() >= 2 && !legs.back().empty() && onCurve(g, seg, legs.back().back());
+  if (back && legs.size() == 2) return applyCuts(g, seg, p, {&legs[0], &legs[1]});
+  if (back) {
+    std::vector<const std::vector<uint32_t>*> paths;
+    for (const auto& leg : legs) paths.push_back(&leg);
+    if (applyCuts(g, seg, p, paths)) return true;
+  }
+  // a chain that does not get back to the border, or whose cut fails: the sink alone
+  const std::vector<uint32_t> second =
+      pathToBorder(g, seg, p, sink, oppositeSteps(g, sink, first[1], minWedge, balanced), std::vector<uint32_t>(first.begin() + 1, first.end()), end);
+  return second.size() >= 2 && applyCuts(g, seg, p, {&first, &second});
+}
+
+// cutThroughVertex with paths ending at any curve; for a spike tip in a patch with inner curves,
+// when that fails (a path ends on an inner curve and parts nothing), ending at its border: a tip
+// left inside is cut off by the output (a sink left inside only costs triangles, and the longer
+// cuts round inner curves made more patches and short junctions: ChineseDragon-10kv).
+bool cutThroughVertex(const EdgeGraph& g, Segmentation& seg, uint32_t p, uint32_t sink, double minWedge, bool balanced,
+                      double minDepth, const std::vector<uint32_t>& others = {}) {
+  if (cutThroughVertex(g, seg, p, sink, minWedge, balanced, minDepth, others, PathEnd::Curve)) return true;
+  bool inner = false;
+  for (uint32_t c = 0; c < seg.curves.size() && !inner; ++c) inner = seg.isInnerCurve(c) && seg.curves[c].patches[0] == p;
+  return inner && !balanced && cutThroughVertex(g, seg, p, sink, minWedge, balanced, minDepth, others, PathEnd::Border);
 }
 
 }  // namespace
 
-bool cutThroughSink(const EdgeGraph& g, Segmentation& seg, uint32_t p, uint32_t sink, double minWedge, double minDepth) {
-  return cutThroughVertex(g, seg, p, sink, minWedge, true, minDepth);
+bool cutThroughSink(const EdgeGraph& g, Segmentation& seg, uint32_t p, uint32_t sink, double minWedge, double minDepth,
+                    const std::vector<uint32_t>& others) {
+  return cutThroughVertex(g, seg, p, sink, minWedge, true, minDepth, others);
 }
 
 bool cutThroughSpike(const EdgeGraph& g, Segmentation& seg, uint32_t p, uint32_t tip, double minWedge) {

@@ -15,6 +15,7 @@
 #pragma once
 
 #include <cstdint>
+#include <vector>
 
 #include "features/edge_graph.h"
 #include "features/segmentation.h"
@@ -30,7 +31,8 @@ namespace conformesh::features {
 //! up as two or more disks, or the segmentation with no more patches than before; also false when
 //! the sink is nearer the border than `minDepth` (along the first path). O(patch) plus the
 //! rebuilds of the curves.
-bool cutThroughSink(const EdgeGraph& g, Segmentation& seg, uint32_t p, uint32_t sink, double minWedge, double minDepth = 0);
+bool cutThroughSink(const EdgeGraph& g, Segmentation& seg, uint32_t p, uint32_t sink, double minWedge, double minDepth = 0,
+                    const std::vector<uint32_t>& others = {});
 
 //! cutThroughSink for the tip of a spike (an interior vertex whose angle sum is far below 2π: a
 //! horn, a claw): the second path leaves the tip through the neighbour most opposite the first

@@ -117,6 +117,29 @@ uint32_t scaleSink(const F::PatchMesh& pm, const std::vector<double>& u) {
   return pm.vertexInput[size_t(std::min_element(u.begin(), u.end()) - u.begin())];
 }
 
+// The other sinks of a flattened patch a sink cut may pass through (input vertices): the local
+// minima of u inside it (no vertex of its border) whose scale is below the patch's largest by
+// more than `ratio`.
+std::vector<uint32_t> otherSinks(const PatchWork& w, double ratio) {
+  const auto& u = w.flat.u;
+  const size_t nv = w.pm.vertexInput.size();
+  if (u.size() != nv || w.scaleSub.size() != nv) return {};
+  std::vector<uint8_t> candidate(nv, 1);
+  for (const auto& loop : w.pm.boundaryLoops)
+    for (const auto& h : loop) candidate[w.pm.mesh.triangles[3 * h.face + h.corner]] = 0;
+  const auto& t = w.pm.mesh.triangles;
+  for (size_t k = 0; k < t.size(); ++k) {  // a vertex with a lower neighbour (ties: the lower index) is none
+    const uint32_t a = t[k], b = t[k - k % 3 + (k + 1) % 3];
+    if (u[b] < u[a] || (u[b] == u[a] && b < a)) candidate[a] = 0;
+    if (u[a] < u[b] || (u[a] == u[b] && a < b)) candidate[b] = 0;
+  }
+  const double top = *std::max_element(w.scaleSub.begin(), w.scaleSub.end());
+  std::vector<uint32_t> sinks;
+  for (size_t v = 0; v < nv; ++v)
+    if (candidate[v] && top > ratio * w.scaleSub[v]) sinks.push_back(w.pm.vertexInput[v]);
+  return sinks;
+}
+
 // The vertices of patch mesh pm too far from flat for its layout (input vertices, kNone for none):
 // the border vertex whose 3D wedge is widest above 2π − kConeGap, and the interior vertex whose
 // angle sum is smallest below it.
@@ -456,16 +479,19 @@ Patches flattenPatches(Surface& surf, const RemeshOptions& opt, const Progress& 
         // a spike tip inside the patch: the flat map opens its angle sum Θ to 2π, so the angles
         // of the triangles around it shrink by Θ/2π when lifted, and the output need not have a
         // vertex at the tip; cut through it, and each half lays out its side of the tip as it is
-        // (each side keeps the bound: a wedge below twice the bound takes one triangle)
+        // (each side keeps the bound: a wedge below twice the bound takes one triangle); a tip on
+        // an inner curve is no vertex a cut may pass, and the curve is closed through it instead
         if (const FarFromFlat far = farFromFlat(f.w->pm);
-            far.coneAngle < spikeAngle && F::cutThroughSpike(surf.g, surf.seg, p, far.sharpestCone, 0.5 * minWedge)) {
+            far.coneAngle < spikeAngle && (F::cutThroughSpike(surf.g, surf.seg, p, far.sharpestCone, 0.5 * minWedge) ||
+                                           F::closeInnerCreases(surf.g, surf.seg, p, far.sharpestCone))) {
           ++rep.sinkCuts;
           split = true;
           continue;
         }
         if (const uint32_t sink = scaleSink(f.w->pm, f.w->flat.u);
             f.scaleRatio > kSinkScaleRatio && sink != kNone &&
-            F::cutThroughSink(surf.g, surf.seg, p, sink, minWedge, kSinkDepth * surf.sizing.h[sink])) {
+            F::cutThroughSink(surf.g, surf.seg, p, sink, minWedge, kSinkDepth * surf.sizing.h[sink],
+                              otherSinks(*f.w, kSinkScaleRatio))) {
           ++rep.sinkCuts;
           split = true;
           continue;

@@ -999,3 +999,44 @@ TEST_CASE("features: mergeCutPatches joins a strip narrower than the width acros
       if (before.edgeKind[e] != EdgeKind::Cut) CHECK(s.edgeKind[e] == before.edgeKind[e]);
   }
 }
+
+TEST_CASE("features: closeInnerCreases closes one inner crease at a time: the longest, or the one through a vertex") {
+  const int n = 20;
+  const EdgeGraph g = buildEdgeGraph(testshapes::square(n));
+  FeatureOptions o;
+  o.innerCreases = true;
+  const auto edge = [&](int i0, int j0, int i1, int j1) -> std::array<uint32_t, 2> {
+    return {vertexAt(g, double(i0) / n, double(j0) / n), vertexAt(g, double(i1) / n, double(j1) / n)};
+  };
+  for (int i = 4; i < 14; ++i) o.featureEdges.push_back(edge(i, 6, i + 1, 6));    // long, inside
+  for (int i = 6; i < 10; ++i) o.featureEdges.push_back(edge(i, 14, i + 1, 14));  // short, inside
+  const uint32_t onShort = vertexAt(g, 8.0 / n, 14.0 / n);
+  const auto innerThrough = [&](const Segmentation& s, uint32_t v) {
+    for (uint32_t k = g.vertexEdgeStart[v]; k < g.vertexEdgeStart[v + 1]; ++k) {
+      const uint32_t c = s.edgeCurve[g.vertexEdgeIds[k]];
+      if (c != kNone && s.isInnerCurve(c)) return true;
+    }
+    return false;
+  };
+  const uint32_t onLong = vertexAt(g, 9.0 / n, 6.0 / n);
+  Segmentation s = segment(g, o);
+  REQUIRE(s.patches.size() == 1);
+  REQUIRE(innerThrough(s, onLong));
+  REQUIRE(innerThrough(s, onShort));
+  // the longest first: continued to the border it parts the square; the short one stays inside
+  REQUIRE(closeInnerCreases(g, s, 0));
+  CHECK(s.patches.size() >= 2);
+  CHECK_FALSE(innerThrough(s, onLong));
+  CHECK(innerThrough(s, onShort));
+  checkPatchesAreDisks(g, s);
+  // the one through a vertex
+  const uint32_t p = s.facePatch[g.edgeFaces[g.findEdge(edge(8, 14, 9, 14)[0], edge(8, 14, 9, 14)[1])][0]];
+  const size_t before = s.patches.size();
+  REQUIRE(closeInnerCreases(g, s, p, onShort));
+  CHECK(s.patches.size() > before);
+  CHECK_FALSE(innerThrough(s, onShort));
+  checkPatchesAreDisks(g, s);
+  // none left in that part: nothing to close
+  const uint32_t q = s.facePatch[g.edgeFaces[g.findEdge(edge(8, 14, 9, 14)[0], edge(8, 14, 9, 14)[1])][0]];
+  CHECK_FALSE(closeInnerCreases(g, s, q, onShort));
+}

@@ -161,3 +161,37 @@ TEST_CASE("sink cuts: cutThroughWideCorner cuts a patch in two disks from a bord
   CHECK(side[0] >= 0.375 * kPi - 1e-12);
   CHECK(side[1] >= 0.375 * kPi - 1e-12);
 }
+
+TEST_CASE("sink cuts: one cut passes through several sinks and parts the patch in two disks") {
+  // three sinks in a row inside a flat square: the cut leaves the first for the border, comes
+  // back through the other two (each left opposite where the cut came) and ends on the border
+  const EdgeGraph g = buildEdgeGraph(testshapes::square(12));
+  const auto vertexAt = [&](double x, double y) {
+    for (uint32_t v = 0; v < g.vertexCount; ++v)
+      if (std::abs(g.positions[v].x - x) < 1e-12 && std::abs(g.positions[v].y - y) < 1e-12) return v;
+    return kNone;
+  };
+  const uint32_t s1 = vertexAt(0.25, 0.5), s2 = vertexAt(0.5, 0.5), s3 = vertexAt(0.75, 0.5);
+  REQUIRE(s1 != kNone);
+  REQUIRE(s2 != kNone);
+  REQUIRE(s3 != kNone);
+  const auto cutValence = [&](const Segmentation& s, uint32_t v) {
+    int n = 0;
+    for (uint32_t k = g.vertexEdgeStart[v]; k < g.vertexEdgeStart[v + 1]; ++k) n += s.edgeKind[g.vertexEdgeIds[k]] == EdgeKind::Cut;
+    return n;
+  };
+  Segmentation s = segment(g, FeatureOptions{});
+  REQUIRE(s.patches.size() == 1);
+  REQUIRE(cutThroughSink(g, s, 0, s1, kPi / 3, 0.0, {s3, s2}));
+  CHECK(s.patches.size() == 2);
+  const std::vector<uint8_t> mask = s.curveMask();
+  for (const auto& faces : s.patches) CHECK(extractPatch(g, mask, faces).isDisk());
+  for (uint32_t v : {s1, s2, s3}) CHECK(cutValence(s, v) == 2);
+
+  // the first sink alone: the others stay inside a part
+  Segmentation alone = segment(g, FeatureOptions{});
+  REQUIRE(cutThroughSink(g, alone, 0, s1, kPi / 3));
+  CHECK(alone.patches.size() == 2);
+  CHECK(cutValence(alone, s1) == 2);
+  CHECK(cutValence(alone, s2) + cutValence(alone, s3) < 4);
+}
