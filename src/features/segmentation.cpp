@@ -571,47 +571,21 @@ bool splitPatch(const EdgeGraph& g, Segmentation& seg, uint32_t p, uint32_t part
   return true;
 }
 
-bool closeInnerCreases(const EdgeGraph& g, Segmentation& seg, uint32_t p, uint32_t at) {
+bool closeInnerCreases(const EdgeGraph& g, Segmentation& seg, uint32_t p) {
   if (!seg.innerCreases || p >= seg.patches.size()) return false;
+  std::vector<uint32_t> tips;
+  for (uint32_t c = 0; c < seg.curves.size(); ++c)
+    if (seg.isInnerCurve(c) && seg.curves[c].patches[0] == p)
+      for (const uint32_t v : {seg.curves[c].vertices.front(), seg.curves[c].vertices.back()}) tips.push_back(v);
+  std::sort(tips.begin(), tips.end());
+  tips.erase(std::unique(tips.begin(), tips.end()), tips.end());
   // the dangling ends (one curve edge): a junction of inner curves or an end on the border is none
   const auto dangling = [&](uint32_t v) {
     uint32_t valence = 0;
     for (uint32_t k = g.vertexEdgeStart[v]; k < g.vertexEdgeStart[v + 1]; ++k) valence += seg.isCurveEdge(g.vertexEdgeIds[k]);
     return valence == 1;
   };
-  std::vector<uint32_t> inner;  // p's inner curves
-  for (uint32_t c = 0; c < seg.curves.size(); ++c)
-    if (seg.isInnerCurve(c) && seg.curves[c].patches[0] == p) inner.push_back(c);
-  std::vector<uint32_t> chosen;
-  if (at == kNone) {
-    // the longest with a dangling end: one crease closed at a time, the part it closes off
-    // flattened again before the next (all at once make as many patches as without inner creases)
-    double longest = -1;
-    for (const uint32_t c : inner)
-      if ((dangling(seg.curves[c].vertices.front()) || dangling(seg.curves[c].vertices.back())) && seg.curves[c].length > longest)
-        longest = seg.curves[c].length, chosen = {c};
-  } else {
-    // the inner curves joined to the one through `at`, which a split cannot leave inside
-    std::vector<uint8_t> reached(g.vertexCount, 0);
-    reached[at] = 1;
-    for (bool grew = true; grew;) {
-      grew = false;
-      for (const uint32_t c : inner) {
-        if (std::find(chosen.begin(), chosen.end(), c) != chosen.end()) continue;
-        const auto& vs = seg.curves[c].vertices;
-        if (!std::any_of(vs.begin(), vs.end(), [&](uint32_t v) { return reached[v] != 0; })) continue;
-        chosen.push_back(c);
-        for (const uint32_t v : vs) reached[v] = 1;
-        grew = true;
-      }
-    }
-  }
-  std::vector<uint32_t> tips;
-  for (const uint32_t c : chosen)
-    for (const uint32_t v : {seg.curves[c].vertices.front(), seg.curves[c].vertices.back()})
-      if (dangling(v)) tips.push_back(v);
-  std::sort(tips.begin(), tips.end());
-  tips.erase(std::unique(tips.begin(), tips.end()), tips.end());
+  tips.erase(std::remove_if(tips.begin(), tips.end(), [&](uint32_t v) { return !dangling(v); }), tips.end());
   if (tips.empty()) return false;
   const std::vector<uint32_t> region = seg.patches[p];
   extendDanglingCurves(g, seg, tips);

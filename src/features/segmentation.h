@@ -124,13 +124,11 @@ std::vector<double> featureWedgeAngles(const EdgeGraph& g, const Segmentation& s
 //! caller rebuilds the curves.
 void extendDanglingCurves(const EdgeGraph& g, Segmentation& seg, const std::vector<uint32_t>& from = {});
 
-//! One of patch p's inner curves (Segmentation::isInnerCurve) continued from its dangling ends as
+//! Patch p's inner curves (Segmentation::isInnerCurve) continued from their dangling ends as
 //! extendDanglingCurves does, the parts that closes off cut into disks, curves and patches
-//! rebuilt: for a patch whose flattening fails or spreads its scale too far with inner curves
-//! inside, the longest with a dangling end (at = kNone); else those joined to the inner curve
-//! through vertex `at` (a vertex a cut must pass through). False (nothing changed) when there is
-//! no such curve or it has no dangling end.
-bool closeInnerCreases(const EdgeGraph& g, Segmentation& seg, uint32_t p, uint32_t at = kNone);
+//! rebuilt: what segment() without innerCreases makes of the patch, for a patch whose flattening
+//! fails or spreads its scale too far with them inside. False (nothing changed) when it has none.
+bool closeInnerCreases(const EdgeGraph& g, Segmentation& seg, uint32_t p);
 
 //! Recompute curves, corners and patches from seg.edgeKind (after edges were marked). Only the
 //! curves and patches beside the edges changed since the last rebuild are redone; the result,

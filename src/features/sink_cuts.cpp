@@ -206,16 +206,24 @@ bool cutThroughVertex(const EdgeGraph& g, Segmentation& seg, uint32_t p, uint32_
   }
   // The way back from the sink: through the other sinks, each left opposite where the cut came
   // from, then to the border, each leg avoiding what the cut took before. One cut then puts
-  // several sinks on the border (a hand's finger tips: its two halves, as a glove is sewn) where
-  // a cut per sink would make a patch per sink.
+  // several sinks on the border where a cut per sink would make a patch per sink. A leg goes to
+  // the nearest sink only when it is nearer than the border: one cut no longer than the two it
+  // replaces (without that, a hand's finger tips chained through the webs left two halves whose
+  // fingers overlapped in the plane, and man got more patches, not fewer).
   std::vector<std::vector<uint32_t>> legs{first};
   std::vector<uint32_t> avoid(first.begin() + 1, first.end());
   others.erase(std::remove_if(others.begin(), others.end(), [&](uint32_t v) { return v == sink || onCurve(g, seg, v); }), others.end());
   for (uint32_t at = sink, from = first[1];;) {
     const std::vector<uint32_t> opposite = oppositeSteps(g, at, from, minWedge, balanced);
     std::vector<uint32_t> leg = others.empty() ? std::vector<uint32_t>{} : pathToBorder(g, seg, p, at, opposite, avoid, PathEnd::Target, others);
-    const bool toSink = leg.size() >= 2;
-    if (!toSink) leg = pathToBorder(g, seg, p, at, opposite, avoid, end);
+    std::vector<uint32_t> out = pathToBorder(g, seg, p, at, opposite, avoid, end);
+    const auto length = [&](const std::vector<uint32_t>& path) {
+      double d = 0;
+      for (size_t i = 0; i + 1 < path.size(); ++i) d += norm(g.positions[path[i + 1]] - g.positions[path[i]]);
+      return path.size() < 2 ? INFINITY : d;
+    };
+    const bool toSink = leg.size() >= 2 && length(leg) < length(out);
+    if (!toSink) leg = std::move(out);
     if (leg.size() < 2) break;
     avoid.insert(avoid.end(), leg.begin(), leg.end());
     legs.push_back(std::move(leg));

@@ -140,6 +140,16 @@ std::vector<uint32_t> otherSinks(const PatchWork& w, double ratio) {
   return sinks;
 }
 
+// Vertex v (input) is on an inner curve (features/segmentation.h).
+bool onInnerCurve(const F::Segmentation& seg, const F::EdgeGraph& g, uint32_t v) {
+  if (v == kNone) return false;
+  for (uint32_t k = g.vertexEdgeStart[v]; k < g.vertexEdgeStart[v + 1]; ++k) {
+    const uint32_t c = seg.edgeCurve[g.vertexEdgeIds[k]];
+    if (c != kNone && seg.isInnerCurve(c)) return true;
+  }
+  return false;
+}
+
 // The vertices of patch mesh pm too far from flat for its layout (input vertices, kNone for none):
 // the border vertex whose 3D wedge is widest above 2π − kConeGap, and the interior vertex whose
 // angle sum is smallest below it.
@@ -480,10 +490,10 @@ Patches flattenPatches(Surface& surf, const RemeshOptions& opt, const Progress& 
         // of the triangles around it shrink by Θ/2π when lifted, and the output need not have a
         // vertex at the tip; cut through it, and each half lays out its side of the tip as it is
         // (each side keeps the bound: a wedge below twice the bound takes one triangle); a tip on
-        // an inner curve is no vertex a cut may pass, and the curve is closed through it instead
+        // an inner curve is no vertex a cut may pass: the inner curves are closed instead
         if (const FarFromFlat far = farFromFlat(f.w->pm);
             far.coneAngle < spikeAngle && (F::cutThroughSpike(surf.g, surf.seg, p, far.sharpestCone, 0.5 * minWedge) ||
-                                           F::closeInnerCreases(surf.g, surf.seg, p, far.sharpestCone))) {
+                                           (onInnerCurve(surf.seg, surf.g, far.sharpestCone) && F::closeInnerCreases(surf.g, surf.seg, p)))) {
           ++rep.sinkCuts;
           split = true;
           continue;
