@@ -30,6 +30,10 @@ bool onBorder(const EdgeGraph& g, const Segmentation& seg, uint32_t v) {
   return false;
 }
 
+// Sinks one cut passes through besides its first: each costs two shortest-path searches over the
+// patch, and a hand has five tips.
+constexpr uint32_t kMaxChainSinks = 8;
+
 // Edge e may carry the cut: on no curve, and beside patch p (both its faces in p, or, for the
 // last step onto the border, one of them).
 bool stepAllowed(const EdgeGraph& g, const Segmentation& seg, uint32_t e, uint32_t p, bool toBorder) {
@@ -213,7 +217,9 @@ bool cutThroughVertex(const EdgeGraph& g, Segmentation& seg, uint32_t p, uint32_
   std::vector<std::vector<uint32_t>> legs{first};
   std::vector<uint32_t> avoid(first.begin() + 1, first.end());
   others.erase(std::remove_if(others.begin(), others.end(), [&](uint32_t v) { return v == sink || onCurve(g, seg, v); }), others.end());
-  for (uint32_t at = sink, from = first[1];;) {
+  // each leg takes one sink off the list; kMaxChainSinks bounds the Dijkstra runs of a cut
+  for (uint32_t at = sink, from = first[1], chained = 0;; ++chained) {
+    if (chained >= kMaxChainSinks) others.clear();
     const std::vector<uint32_t> opposite = oppositeSteps(g, at, from, minWedge, balanced);
     std::vector<uint32_t> leg = others.empty() ? std::vector<uint32_t>{} : pathToBorder(g, seg, p, at, opposite, avoid, PathEnd::Target, others);
     std::vector<uint32_t> out = pathToBorder(g, seg, p, at, opposite, avoid, end);
@@ -230,7 +236,7 @@ bool cutThroughVertex(const EdgeGraph& g, Segmentation& seg, uint32_t p, uint32_
     if (!toSink) break;
     at = legs.back().back();
     from = legs.back()[legs.back().size() - 2];
-    others.erase(std::find(others.begin(), others.end(), at));
+    others.erase(std::remove(others.begin(), others.end(), at), others.end());
   }
   const bool back = legs.size() >= 2 && !legs.back().empty() && onCurve(g, seg, legs.back().back());
   if (back && legs.size() == 2) return applyCuts(g, seg, p, {&legs[0], &legs[1]});

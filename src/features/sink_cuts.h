@@ -29,8 +29,13 @@ namespace conformesh::features {
 //! split follow (features/cut_junctions.h, close_junctions.h), over the patch only. False, with
 //! the segmentation as it was, when there is no such pair of paths or the patch would not end
 //! up as two or more disks, or the segmentation with no more patches than before; also false when
-//! the sink is nearer the border than `minDepth` (along the first path). O(patch) plus the
-//! rebuilds of the curves.
+//! the sink is nearer the border than `minDepth` (along the first path). `others`: further sinks
+//! of p (vertices on no curve); the second path may pass through them on its way to the border,
+//! each time to the nearest one left when it is nearer than the border and leaving it as the
+//! sink is left (3/8 of its angle sum from where the path came), at most 8 of them: one cut then
+//! puts them all on the border (docs/decisions/0046); when that cut fails, the sink alone is cut.
+//! In a patch with inner curves a path may end on one of them (then often parting nothing).
+//! O(patch) per sink passed plus the rebuilds of the curves.
 bool cutThroughSink(const EdgeGraph& g, Segmentation& seg, uint32_t p, uint32_t sink, double minWedge, double minDepth = 0,
                     const std::vector<uint32_t>& others = {});
 
@@ -38,7 +43,9 @@ bool cutThroughSink(const EdgeGraph& g, Segmentation& seg, uint32_t p, uint32_t 
 //! horn, a claw): the second path leaves the tip through the neighbour most opposite the first
 //! that leaves each side `minWedge` (a spike tip's ring has few faces, often none 3/8 of the
 //! way round). The tip is then on the border of both halves, where the free boundary keeps the
-//! scale of the surface: no flat map squeezes the spike into a point inside a patch.
+//! scale of the surface: no flat map squeezes the spike into a point inside a patch. In a patch
+//! with inner curves, when the paths end on them and part nothing, the tip is cut again with
+//! paths that keep off the inner curves and end on the border.
 bool cutThroughSpike(const EdgeGraph& g, Segmentation& seg, uint32_t p, uint32_t tip, double minWedge);
 
 //! Cut patch p in two along the shortest path of input edges inside it from `corner` (a vertex

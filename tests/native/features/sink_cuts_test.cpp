@@ -195,3 +195,37 @@ TEST_CASE("sink cuts: one cut passes through several sinks and parts the patch i
   CHECK(cutValence(alone, s1) == 2);
   CHECK(cutValence(alone, s2) + cutValence(alone, s3) < 4);
 }
+
+TEST_CASE("sink cuts: a spike tip between two inner creases is cut through to the border, past them") {
+  // two short inner creases on either side of the tip: the cut's two paths end on them first,
+  // which parts nothing; it is cut again with paths that keep off them and end on the border
+  const MeshBuffers spike = testshapes::spike(0.25, 0.12);
+  const EdgeGraph g = buildEdgeGraph(spike);
+  const double pi = kPi;
+  const auto ringVertex = [&](int k, int i) {
+    const double r = k / 30.0, a = 2 * pi * (i % 64) / 64;
+    for (uint32_t v = 0; v < g.vertexCount; ++v)
+      if (std::abs(g.positions[v].x - r * std::cos(a)) < 1e-9 && std::abs(g.positions[v].y - r * std::sin(a)) < 1e-9) return v;
+    return kNone;
+  };
+  FeatureOptions o;
+  o.innerCreases = true;
+  for (int i : {14, 15, 16, 17, 46, 47, 48, 49}) {
+    const uint32_t a = ringVertex(3, i), b = ringVertex(3, i + 1);
+    REQUIRE(a != kNone);
+    REQUIRE(b != kNone);
+    o.featureEdges.push_back({a, b});
+  }
+  Segmentation s = segment(g, o);
+  REQUIRE(s.patches.size() == 1);
+  const uint32_t tip = 0;
+  REQUIRE(cutThroughSpike(g, s, 0, tip, kPi / 6));
+  CHECK(s.patches.size() == 2);
+  const std::vector<uint8_t> mask = s.curveMask();
+  for (const auto& faces : s.patches) CHECK(extractPatch(g, mask, faces).isDisk());
+  int cutsAtTip = 0;
+  for (uint32_t k = g.vertexEdgeStart[tip]; k < g.vertexEdgeStart[tip + 1]; ++k) cutsAtTip += s.edgeKind[g.vertexEdgeIds[k]] == EdgeKind::Cut;
+  CHECK(cutsAtTip == 2);
+  // the creases stay inner curves: the cut went round them
+  for (const auto& fe : o.featureEdges) CHECK(s.isInnerCurve(s.edgeCurve[g.findEdge(fe[0], fe[1])]));
+}
