@@ -141,7 +141,7 @@ std::vector<uint32_t> otherSinks(const PatchWork& w, double ratio) {
 }
 
 // Vertex v (input) is on an inner curve (features/segmentation.h).
-bool onInnerCurve(const F::Segmentation& seg, const F::EdgeGraph& g, uint32_t v) {
+bool onInnerCurve(const F::EdgeGraph& g, const F::Segmentation& seg, uint32_t v) {
   if (v == kNone) return false;
   for (uint32_t k = g.vertexEdgeStart[v]; k < g.vertexEdgeStart[v + 1]; ++k) {
     const uint32_t c = seg.edgeCurve[g.vertexEdgeIds[k]];
@@ -493,7 +493,7 @@ Patches flattenPatches(Surface& surf, const RemeshOptions& opt, const Progress& 
         // an inner curve is no vertex a cut may pass: the inner curves are closed instead
         if (const FarFromFlat far = farFromFlat(f.w->pm);
             far.coneAngle < spikeAngle && (F::cutThroughSpike(surf.g, surf.seg, p, far.sharpestCone, 0.5 * minWedge) ||
-                                           (onInnerCurve(surf.seg, surf.g, far.sharpestCone) && F::closeInnerCreases(surf.g, surf.seg, p)))) {
+                                           (onInnerCurve(surf.g, surf.seg, far.sharpestCone) && F::closeInnerCreases(surf.g, surf.seg, p)))) {
           ++rep.sinkCuts;
           split = true;
           continue;
