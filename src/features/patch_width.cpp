@@ -25,7 +25,7 @@ std::vector<std::array<double, 2>> patchWidths(const EdgeGraph& g, const Segment
   for (uint32_t e = 0; e < g.edgeCount(); ++e) {
     const auto& ef = g.edgeFaces[e];
     const uint32_t p0 = seg.facePatch[ef[0]], p1 = ef[1] == kNone ? kNone : seg.facePatch[ef[1]];
-    if (p0 == p1 && seg.edgeCurve[e] != kNone && seg.isInnerCurve(seg.edgeCurve[e])) {
+    if (p0 == p1 && seg.isInnerEdge(e)) {
       // an inner curve: a constraint inside its patch, sampled as a border is, on both sides
       border[p0].push_back({e, 0});
       border[p0].push_back({e, 1});
@@ -53,7 +53,7 @@ std::vector<std::array<double, 2>> patchWidths(const EdgeGraph& g, const Segment
       if (len == 0) continue;
       const Vec3 m = (a + b) * 0.5, te = (b - a) * (1.0 / len);
       // on an inner curve, only what lies on this side: towards the side's face from the edge
-      const bool inner = seg.edgeCurve[e] != kNone && seg.isInnerCurve(seg.edgeCurve[e]);
+      const bool inner = seg.isInnerEdge(e);
       Vec3 toFace{};
       if (inner) {
         const auto& fv = g.faces[g.edgeFaces[e][side]];

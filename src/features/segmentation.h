@@ -94,6 +94,8 @@ struct Segmentation {
     const Curve& cu = curves[c];
     return innerCreases && cu.kind == EdgeKind::Feature && cu.patches[0] == cu.patches[1] && cu.patches[0] != kNone;
   }
+  //! Input edge e lies on an inner curve.
+  bool isInnerEdge(uint32_t e) const { return edgeCurve[e] != kNone && isInnerCurve(edgeCurve[e]); }
   //! Per input edge: a patch is cut open along it (a curve edge, but for inner curves' edges).
   std::vector<uint8_t> curveMask() const;
 };

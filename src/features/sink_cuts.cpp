@@ -25,7 +25,7 @@ bool onCurve(const EdgeGraph& g, const Segmentation& seg, uint32_t v) {
 bool onBorder(const EdgeGraph& g, const Segmentation& seg, uint32_t v) {
   for (uint32_t k = g.vertexEdgeStart[v]; k < g.vertexEdgeStart[v + 1]; ++k) {
     const uint32_t e = g.vertexEdgeIds[k];
-    if (seg.isCurveEdge(e) && !seg.isInnerCurve(seg.edgeCurve[e])) return true;
+    if (seg.isCurveEdge(e) && !seg.isInnerEdge(e)) return true;
   }
   return false;
 }
@@ -67,6 +67,14 @@ std::vector<std::pair<uint32_t, double>> ringAngles(const EdgeGraph& g, uint32_t
   if (w != g.otherVertex(e0, v)) return {};
   total = acc;
   return ring;
+}
+
+// The 3D length of a path of vertices (+infinity for no path).
+double pathLength(const EdgeGraph& g, const std::vector<uint32_t>& path) {
+  if (path.size() < 2) return INFINITY;
+  double d = 0;
+  for (size_t i = 0; i + 1 < path.size(); ++i) d += norm(g.positions[path[i + 1]] - g.positions[path[i]]);
+  return d;
 }
 
 // Where a cut's path may end: at any curve (Curve); at p's border, keeping off its inner curves
@@ -203,11 +211,7 @@ bool cutThroughVertex(const EdgeGraph& g, Segmentation& seg, uint32_t p, uint32_
   for (const auto& r : ring) all.push_back(r.first);
   const std::vector<uint32_t> first = pathToBorder(g, seg, p, sink, all, {}, end);
   if (first.size() < 2) return false;
-  if (minDepth > 0) {  // the nearest border is the first path's end
-    double depth = 0;
-    for (size_t i = 0; i + 1 < first.size(); ++i) depth += norm(g.positions[first[i + 1]] - g.positions[first[i]]);
-    if (depth < minDepth) return false;
-  }
+  if (pathLength(g, first) < minDepth) return false;  // the nearest border is the first path's end
   // The way back from the sink: through the other sinks, each left opposite where the cut came
   // from, then to the border, each leg avoiding what the cut took before. One cut then puts
   // several sinks on the border where a cut per sink would make a patch per sink. A leg goes to
@@ -223,12 +227,7 @@ bool cutThroughVertex(const EdgeGraph& g, Segmentation& seg, uint32_t p, uint32_
     const std::vector<uint32_t> opposite = oppositeSteps(g, at, from, minWedge, balanced);
     std::vector<uint32_t> leg = others.empty() ? std::vector<uint32_t>{} : pathToBorder(g, seg, p, at, opposite, avoid, PathEnd::Target, others);
     std::vector<uint32_t> out = pathToBorder(g, seg, p, at, opposite, avoid, end);
-    const auto length = [&](const std::vector<uint32_t>& path) {
-      double d = 0;
-      for (size_t i = 0; i + 1 < path.size(); ++i) d += norm(g.positions[path[i + 1]] - g.positions[path[i]]);
-      return path.size() < 2 ? INFINITY : d;
-    };
-    const bool toSink = leg.size() >= 2 && length(leg) < length(out);
+    const bool toSink = leg.size() >= 2 && pathLength(g, leg) < pathLength(g, out);
     if (!toSink) leg = std::move(out);
     if (leg.size() < 2) break;
     avoid.insert(avoid.end(), leg.begin(), leg.end());
@@ -238,7 +237,9 @@ bool cutThroughVertex(const EdgeGraph& g, Segmentation& seg, uint32_t p, uint32_
     from = legs.back()[legs.back().size() - 2];
     others.erase(std::remove(others.begin(), others.end(), at), others.end());
   }
-  const bool back = legs.size() >= 2 && !legs.back().empty() && onCurve(g, seg, legs.back().back());
+  // no leg from the sink at all: its way to the border alone (the first leg's search) failed too
+  if (legs.size() < 2) return false;
+  const bool back = onCurve(g, seg, legs.back().back());
   if (back && legs.size() == 2) return applyCuts(g, seg, p, {&legs[0], &legs[1]});
   if (back) {
     std::vector<const std::vector<uint32_t>*> paths;

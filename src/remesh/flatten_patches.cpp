@@ -143,10 +143,8 @@ std::vector<uint32_t> otherSinks(const PatchWork& w, double ratio) {
 // Vertex v (input) is on an inner curve (features/segmentation.h).
 bool onInnerCurve(const F::EdgeGraph& g, const F::Segmentation& seg, uint32_t v) {
   if (v == kNone) return false;
-  for (uint32_t k = g.vertexEdgeStart[v]; k < g.vertexEdgeStart[v + 1]; ++k) {
-    const uint32_t c = seg.edgeCurve[g.vertexEdgeIds[k]];
-    if (c != kNone && seg.isInnerCurve(c)) return true;
-  }
+  for (uint32_t k = g.vertexEdgeStart[v]; k < g.vertexEdgeStart[v + 1]; ++k)
+    if (seg.isInnerEdge(g.vertexEdgeIds[k])) return true;
   return false;
 }
 
