@@ -325,6 +325,18 @@ size_t patchesOver(const Segmentation& seg, const std::vector<uint32_t>& faces) 
   return size_t(std::unique(ids.begin(), ids.end()) - ids.begin());
 }
 
+size_t largestShare(const Segmentation& seg, const std::vector<uint32_t>& faces) {
+  std::vector<uint32_t> ids;
+  for (uint32_t f : faces) ids.push_back(seg.facePatch[f]);
+  std::sort(ids.begin(), ids.end());
+  size_t most = 0;
+  for (size_t i = 0, j = 0; i < ids.size(); i = j) {
+    while (j < ids.size() && ids[j] == ids[i]) ++j;
+    most = std::max(most, j - i);
+  }
+  return most;
+}
+
 uint32_t straightenCutEars(const EdgeGraph& g, Segmentation& seg, const std::vector<uint32_t>& region, bool keepSplit) {
   const double kEar = kNarrowCutWedge;  // wedges below this are candidates
   const double kGain = 1.0 * kPi / 180.0;  // a move must raise the smallest wedge by this much

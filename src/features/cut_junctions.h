@@ -53,4 +53,7 @@ uint32_t moveNarrowCutWedges(const EdgeGraph& g, Segmentation& seg, double minAn
 //! The number of patches the faces `faces` lie in.
 size_t patchesOver(const Segmentation& seg, const std::vector<uint32_t>& faces);
 
+//! The most of the faces `faces` that lie in one patch.
+size_t largestShare(const Segmentation& seg, const std::vector<uint32_t>& faces);
+
 }  // namespace conformesh::features

@@ -361,29 +361,6 @@ uint32_t mergeNarrowPatches(const EdgeGraph& g, Segmentation& seg, double minWid
 }
 
 
-// After new cuts in `region` (a patch's faces that now make two or more): their junctions
-// improved and their ears, slivers and narrow wedges repaired, as segment() does, within region.
-// The repairs must not leave the region one patch again (a pruned branch that separated its
-// parts): the split would be undone, and redone at the next flattening, without end.
-// Straightening makes no such move (a sliver part inside a wedge may go); a repair that leaves
-// one patch all the same is dropped.
-void repairNewCuts(const EdgeGraph& g, Segmentation& seg, const std::vector<uint32_t>& region) {
-  improveCutJunctions(g, seg, seg.junctionScale, region);
-  mergeCloseJunctions(g, seg, kCloseJunctionFactor * seg.junctionScale, region);
-  const auto keepingSplit = [&](auto&& repair) {
-    const std::vector<EdgeKind> before = seg.edgeKind;
-    const uint32_t cutEdges = seg.cutEdgeCount;
-    if (repair() > 0 && patchesOver(seg, region) < 2) {
-      seg.edgeKind = before;
-      seg.cutEdgeCount = cutEdges;
-      rebuildCurves(g, seg);
-    }
-  };
-  keepingSplit([&] { return straightenCutEars(g, seg, region, true); });
-  keepingSplit([&] { return absorbCutSlivers(g, seg, seg.angleBoundDeg * kPi / 180, region); });
-  keepingSplit([&] { return moveNarrowCutWedges(g, seg, seg.angleBoundDeg * kPi / 180, region); });
-}
-
 }  // namespace
 
 // Continue every dangling feature curve (a vertex with exactly one curve edge) along the
@@ -534,6 +511,34 @@ Segmentation segment(const EdgeGraph& g, const FeatureOptions& options, const Pr
   return seg;
 }
 
+uint32_t curveValence(const EdgeGraph& g, const Segmentation& seg, uint32_t v) {
+  uint32_t n = 0;
+  for (uint32_t k = g.vertexEdgeStart[v]; k < g.vertexEdgeStart[v + 1]; ++k) n += seg.isCurveEdge(g.vertexEdgeIds[k]);
+  return n;
+}
+
+void repairNewCuts(const EdgeGraph& g, Segmentation& seg, const std::vector<uint32_t>& region, uint32_t through) {
+  const size_t parted = region.size() - largestShare(seg, region);
+  const size_t mostKept = region.size() - (parted + 1) / 2;
+  const auto valence = [&] { return through == kNone ? 0 : curveValence(g, seg, through); };
+  const uint32_t cutValence = valence();
+  const auto keepingSplit = [&](auto&& repair) {
+    const std::vector<EdgeKind> before = seg.edgeKind;
+    const uint32_t cutEdges = seg.cutEdgeCount, rerouted = seg.reroutedCutEnds;
+    if (repair() > 0 && (patchesOver(seg, region) < 2 || largestShare(seg, region) > mostKept || valence() < cutValence)) {
+      seg.edgeKind = before;
+      seg.cutEdgeCount = cutEdges;
+      seg.reroutedCutEnds = rerouted;
+      rebuildCurves(g, seg);
+    }
+  };
+  keepingSplit([&] { return improveCutJunctions(g, seg, seg.junctionScale, region); });
+  keepingSplit([&] { return mergeCloseJunctions(g, seg, kCloseJunctionFactor * seg.junctionScale, region); });
+  keepingSplit([&] { return straightenCutEars(g, seg, region, true); });
+  keepingSplit([&] { return absorbCutSlivers(g, seg, seg.angleBoundDeg * kPi / 180, region); });
+  keepingSplit([&] { return moveNarrowCutWedges(g, seg, seg.angleBoundDeg * kPi / 180, region); });
+}
+
 bool splitPatch(const EdgeGraph& g, Segmentation& seg, uint32_t p, uint32_t parts, const std::vector<uint32_t>& seeds) {
   if (p >= seg.patches.size() || seg.patches[p].size() < 2) return false;
   const std::vector<uint32_t> region = seg.patches[p];  // the new cuts and their ends lie in it
@@ -580,12 +585,7 @@ bool closeInnerCreases(const EdgeGraph& g, Segmentation& seg, uint32_t p) {
   std::sort(tips.begin(), tips.end());
   tips.erase(std::unique(tips.begin(), tips.end()), tips.end());
   // the dangling ends (one curve edge): a junction of inner curves or an end on the border is none
-  const auto dangling = [&](uint32_t v) {
-    uint32_t valence = 0;
-    for (uint32_t k = g.vertexEdgeStart[v]; k < g.vertexEdgeStart[v + 1]; ++k) valence += seg.isCurveEdge(g.vertexEdgeIds[k]);
-    return valence == 1;
-  };
-  tips.erase(std::remove_if(tips.begin(), tips.end(), [&](uint32_t v) { return !dangling(v); }), tips.end());
+  tips.erase(std::remove_if(tips.begin(), tips.end(), [&](uint32_t v) { return curveValence(g, seg, v) != 1; }), tips.end());
   if (tips.empty()) return false;
   const std::vector<uint32_t> region = seg.patches[p];
   extendDanglingCurves(g, seg, tips);

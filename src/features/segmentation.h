@@ -109,8 +109,21 @@ Segmentation segment(const EdgeGraph& g, const FeatureOptions& options, const Pr
 //! Used when a patch's conformal scale factor varies too much. `seeds` (input faces of p, two or
 //! more; else ignored): when the farthest points' partition leaves two of them in one part, the
 //! seeds are the first seeds instead (the farthest points after them), so the cells keep them
-//! apart. Returns false when the patch is too small to split (fewer than 2 faces).
+//! apart. The junction repairs after the cuts keep at least half of what the cuts parted off the
+//! largest part (docs/decisions/0047). Returns false when the patch is too small to split (fewer
+//! than 2 faces).
 bool splitPatch(const EdgeGraph& g, Segmentation& seg, uint32_t p, uint32_t parts = 2, const std::vector<uint32_t>& seeds = {});
+
+//! The curve edges at input vertex v.
+uint32_t curveValence(const EdgeGraph& g, const Segmentation& seg, uint32_t v);
+
+//! After new cuts in `region` (a patch's faces that the cuts, already rebuilt into curves and
+//! patches, part into two or more): their junctions improved and their ears, slivers and narrow
+//! wedges repaired, as segment() does, within region. A repair must not undo the split: one that
+//! leaves the region in one patch, or more than half of what the cuts parted off the largest
+//! part back in it, or takes the cut off vertex `through` (the vertex a cut through a sink or a
+//! corner is for; kNone: none) is undone and the next one tried (docs/decisions/0047).
+void repairNewCuts(const EdgeGraph& g, Segmentation& seg, const std::vector<uint32_t>& region, uint32_t through = kNone);
 
 //! Per input vertex: the smallest wedge (radians) between the input's own feature and boundary
 //! edges around it, the sum of the face angles between two consecutive such edges (cuts do not

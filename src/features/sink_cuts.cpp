@@ -8,18 +8,13 @@
 #include <vector>
 
 #include "core/constants.h"
-#include "features/close_junctions.h"
 #include "features/cut_junctions.h"
 #include "features/patch_mesh.h"
 
 namespace conformesh::features {
 namespace {
 
-bool onCurve(const EdgeGraph& g, const Segmentation& seg, uint32_t v) {
-  for (uint32_t k = g.vertexEdgeStart[v]; k < g.vertexEdgeStart[v + 1]; ++k)
-    if (seg.isCurveEdge(g.vertexEdgeIds[k])) return true;
-  return false;
-}
+bool onCurve(const EdgeGraph& g, const Segmentation& seg, uint32_t v) { return curveValence(g, seg, v) > 0; }
 
 // v is on patch p's border: on a curve other than an inner one (Segmentation::isInnerCurve).
 bool onBorder(const EdgeGraph& g, const Segmentation& seg, uint32_t v) {
@@ -139,9 +134,13 @@ std::vector<uint32_t> pathToBorder(const EdgeGraph& g, const Segmentation& seg, 
   return path;
 }
 
-// Mark the paths' edges as cuts, make the junction repairs of a split over patch p, and keep the
+// Mark the paths' edges as cuts, make the junction repairs of a split over patch p (none that
+// takes the cut off vertex `through`, the one the cut is for: its sink or wide wedge would stay
+// inside a part, whose flattening fails again for the same reason; man: one cone cut three times
+// over, each cut shaving 2-34 faces off the patch while the cone stayed inside), and keep the
 // result only when p's faces now lie in two or more disks and there are more patches than before.
-bool applyCuts(const EdgeGraph& g, Segmentation& seg, uint32_t p, const std::vector<const std::vector<uint32_t>*>& paths) {
+bool applyCuts(const EdgeGraph& g, Segmentation& seg, uint32_t p, const std::vector<const std::vector<uint32_t>*>& paths,
+               uint32_t through) {
   const std::vector<uint32_t> region = seg.patches[p];  // the cuts and their ends lie in it
   const size_t patchesBefore = seg.patches.size();
   const std::vector<EdgeKind> before = seg.edgeKind;
@@ -154,11 +153,7 @@ bool applyCuts(const EdgeGraph& g, Segmentation& seg, uint32_t p, const std::vec
       ++seg.cutEdgeCount;
     }
   rebuildCurves(g, seg);
-  improveCutJunctions(g, seg, seg.junctionScale, region);
-  mergeCloseJunctions(g, seg, kCloseJunctionFactor * seg.junctionScale, region);
-  straightenCutEars(g, seg, region, true);
-  absorbCutSlivers(g, seg, seg.angleBoundDeg * kPi / 180, region);
-  moveNarrowCutWedges(g, seg, seg.angleBoundDeg * kPi / 180, region);
+  if (patchesOver(seg, region) >= 2) repairNewCuts(g, seg, region, through);
   bool ok = patchesOver(seg, region) >= 2 && seg.patches.size() > patchesBefore;
   if (ok) {
     const std::vector<uint8_t> mask = seg.curveMask();
@@ -240,16 +235,16 @@ bool cutThroughVertex(const EdgeGraph& g, Segmentation& seg, uint32_t p, uint32_
   // no leg from the sink at all: its way to the border alone (the first leg's search) failed too
   if (legs.size() < 2) return false;
   const bool back = onCurve(g, seg, legs.back().back());
-  if (back && legs.size() == 2) return applyCuts(g, seg, p, {&legs[0], &legs[1]});
+  if (back && legs.size() == 2) return applyCuts(g, seg, p, {&legs[0], &legs[1]}, sink);
   if (back) {
     std::vector<const std::vector<uint32_t>*> paths;
     for (const auto& leg : legs) paths.push_back(&leg);
-    if (applyCuts(g, seg, p, paths)) return true;
+    if (applyCuts(g, seg, p, paths, sink)) return true;
   }
   // a chain that does not get back to the border, or whose cut fails: the sink alone
   const std::vector<uint32_t> second =
       pathToBorder(g, seg, p, sink, oppositeSteps(g, sink, first[1], minWedge, balanced), std::vector<uint32_t>(first.begin() + 1, first.end()), end);
-  return second.size() >= 2 && applyCuts(g, seg, p, {&first, &second});
+  return second.size() >= 2 && applyCuts(g, seg, p, {&first, &second}, sink);
 }
 
 // cutThroughVertex with paths ending at any curve; for a spike tip in a patch with inner curves,
@@ -311,7 +306,7 @@ bool cutThroughWideCorner(const EdgeGraph& g, Segmentation& seg, uint32_t p, uin
     if (std::min(a, wedge - a) >= std::max(0.375 * wedge, minWedge)) middle.push_back(x);
   const std::vector<uint32_t> path = pathToBorder(g, seg, p, v, middle, {});
   if (path.size() < 2) return false;
-  return applyCuts(g, seg, p, {&path});
+  return applyCuts(g, seg, p, {&path}, v);
 }
 
 }  // namespace conformesh::features

@@ -2,8 +2,6 @@
 
 #include <cmath>
 #include <cstdint>
-#include <fstream>
-#include <iterator>
 #include <string>
 #include <utility>
 #include <vector>
@@ -12,6 +10,7 @@
 #include "features/edge_graph.h"
 #include "features/sizing.h"
 #include "features/test_shapes.h"
+#include "features/data_models.h"
 #include "mesh/mesh_io.h"
 
 using namespace conformesh;
@@ -177,14 +176,7 @@ TEST_CASE("creases: options out of range are InvalidArgument") {
 }
 
 namespace {
-EdgeGraph sharedModel(const char* name) {
-  std::ifstream in(std::string(CONFORMESH_DATA_DIR) + "/" + name, std::ios::binary);
-  REQUIRE(in);
-  const std::vector<uint8_t> bytes((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
-  ReadOptions ro;
-  ro.fileName = name;
-  return buildEdgeGraph(readMesh(bytes, ro).mesh);
-}
+EdgeGraph sharedModel(const char* name) { return buildEdgeGraph(testshapes::dataModel(name)); }
 // Edges above 60° (the outside checker's sharp edges) that are creases, and how many there are.
 std::pair<uint32_t, uint32_t> sharpKept(const EdgeGraph& g, const Creases& c) {
   uint32_t kept = 0, all = 0;

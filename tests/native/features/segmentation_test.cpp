@@ -22,6 +22,7 @@
 #include "features/merge_cut_patches.h"
 #include "features/sizing.h"
 #include "features/test_shapes.h"
+#include "features/data_models.h"
 #include "features/wedges.h"
 #include "mesh/mesh_io.h"
 
@@ -54,15 +55,6 @@ uint32_t vertexAt(const EdgeGraph& g, double x, double y) {
   for (uint32_t v = 0; v < g.vertexCount; ++v)
     if (std::abs(g.positions[v].x - x) < 1e-12 && std::abs(g.positions[v].y - y) < 1e-12) return v;
   return kNone;
-}
-// The model `name` of ../shared/data (its file name tells the reader the format).
-MeshBuffers dataModel(const std::string& name) {
-  std::ifstream in(std::string(CONFORMESH_DATA_DIR) + "/" + name, std::ios::binary);
-  REQUIRE(in);
-  const std::vector<uint8_t> bytes((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
-  ReadOptions ro;
-  ro.fileName = name;
-  return readMesh(bytes, ro).mesh;
 }
 }  // namespace
 
@@ -552,7 +544,7 @@ int cutHairpins(const EdgeGraph& g, const Segmentation& s) {
 
 TEST_CASE("features: improveCutJunctions' reroutes add no cut hairpins (fertility, t13_data: shortest paths through needle fans did)") {
   for (const char* name : {"fertility.off", "t13_data.stl"}) {
-    const EdgeGraph g = buildEdgeGraph(dataModel(name));
+    const EdgeGraph g = buildEdgeGraph(testshapes::dataModel(name));
     const Segmentation before = segment(g, FeatureOptions{});  // junctionScale 0: no reroutes
     Segmentation after = before;
     const uint32_t rerouted = improveCutJunctions(g, after, 0.01 * boundingBoxDiagonal(g));
@@ -564,7 +556,7 @@ TEST_CASE("features: improveCutJunctions' reroutes add no cut hairpins (fertilit
 }
 
 TEST_CASE("features: improveCutJunctions with a region reroutes only the cuts beside it (fertility)") {
-  const EdgeGraph g = buildEdgeGraph(dataModel("fertility.off"));
+  const EdgeGraph g = buildEdgeGraph(testshapes::dataModel("fertility.off"));
   const Segmentation s0 = segment(g, FeatureOptions{});  // junctionScale 0: no reroutes
   const double scale = 0.01 * boundingBoxDiagonal(g);
   // the region: the patch beside the first cut; cuts may move within it and the patches across
@@ -594,7 +586,7 @@ TEST_CASE("features: improveCutJunctions with a region reroutes only the cuts be
 TEST_CASE("features: mergeCloseJunctions moves cut junctions off short curves; features stay, patches stay disks (camelhead, man)") {
   int modelsWithShortCurves = 0;
   for (const char* name : {"camelhead.off", "man.off"}) {
-    const EdgeGraph g = buildEdgeGraph(dataModel(name));
+    const EdgeGraph g = buildEdgeGraph(testshapes::dataModel(name));
     FeatureOptions fo;
     fo.minFeatureLength = 0.02 * boundingBoxDiagonal(g);  // creases as the remesh finds them at 1 %
     const Segmentation before = segment(g, fo);            // junctionScale 0: no junction repairs
@@ -849,7 +841,7 @@ void checkSameAsScratch(const EdgeGraph& g, const Segmentation& s) {
 }  // namespace
 
 TEST_CASE("features: rebuildCurves after local changes gives what a rebuild from scratch gives, ids included (cylinder loops, man)") {
-  for (const MeshBuffers& mesh : {testshapes::cylinder(24, 8, 4), dataModel("man.off")}) {
+  for (const MeshBuffers& mesh : {testshapes::cylinder(24, 8, 4), testshapes::dataModel("man.off")}) {
     const EdgeGraph g = buildEdgeGraph(mesh);
     FeatureOptions fo;
     fo.minFeatureLength = 0.02 * boundingBoxDiagonal(g);
@@ -966,7 +958,7 @@ TEST_CASE("features: mergeCutPatches joins a strip narrower than the width acros
     }
   }
   SUBCASE("man, as the remesh segments it at 1 %: fewer patches narrower than an output edge, all disks, the features as they were") {
-    const EdgeGraph g = buildEdgeGraph(dataModel("man.off"));
+    const EdgeGraph g = buildEdgeGraph(testshapes::dataModel("man.off"));
     const double target = 0.01 * boundingBoxDiagonal(g);
     FeatureOptions fo;
     fo.minFeatureLength = 2 * target;
@@ -997,5 +989,36 @@ TEST_CASE("features: mergeCutPatches joins a strip narrower than the width acros
     checkPatchesAreDisks(g, s);
     for (uint32_t e = 0; e < g.edgeCount(); ++e)
       if (before.edgeKind[e] != EdgeKind::Cut) CHECK(s.edgeKind[e] == before.edgeKind[e]);
+  }
+}
+
+// The junction repairs after a split (improveCutJunctions reroutes cut ends, the others move ears,
+// slivers and narrow wedges) must keep what the cuts parted: a repair that puts more than half of
+// the smaller side back in the largest part is dropped, else the split is undone but for a
+// sliver and the flattening splits the patch again (man: 346 faces split into 116 and 230 came
+// out as 343 and 3). The cuts as made are the split with the repairs off (no junction scale, no
+// angle bound to repair towards).
+TEST_CASE("features: splitPatch's junction repairs keep at least half of what its cuts parted") {
+  for (const char* name : {"man.off", "camel.off"}) {
+    CAPTURE(name);
+    const EdgeGraph g = buildEdgeGraph(testshapes::dataModel(name));
+    const Segmentation s = segment(g, testshapes::remeshFeatureOptions(g));
+    size_t splits = 0;
+    for (uint32_t p = 0; p < s.patches.size(); ++p) {
+      const std::vector<uint32_t> region = s.patches[p];
+      if (region.size() < 16) continue;
+      Segmentation repaired = s, raw = s;
+      raw.junctionScale = 0;
+      raw.angleBoundDeg = 0;
+      if (!splitPatch(g, repaired, p) || !splitPatch(g, raw, p)) continue;
+      ++splits;
+      const size_t parted = region.size() - largestShare(raw, region);
+      CAPTURE(p);
+      CAPTURE(region.size());
+      CHECK(parted > 0);
+      CHECK(largestShare(repaired, region) <= region.size() - (parted + 1) / 2);
+      checkPatchesAreDisks(g, repaired);
+    }
+    CHECK(splits >= 10);
   }
 }

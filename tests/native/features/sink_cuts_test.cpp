@@ -11,6 +11,7 @@
 #include "features/segmentation.h"
 #include "features/sink_cuts.h"
 #include "features/test_shapes.h"
+#include "features/data_models.h"
 #include "remesh/remesh.h"
 
 using namespace conformesh;
@@ -228,4 +229,46 @@ TEST_CASE("sink cuts: a spike tip between two inner creases is cut through to th
   CHECK(cutsAtTip == 2);
   // the creases stay inner curves: the cut went round them
   for (const auto& fe : o.featureEdges) CHECK(s.isInnerCurve(s.edgeCurve[g.findEdge(fe[0], fe[1])]));
+}
+
+// A cut is for its vertex: the junction repairs that follow (which may reroute a cut end) must
+// leave the vertex on the cut, or its sink or wide wedge stays inside a part, whose flattening
+// fails again for the same reason (man: one cone cut three times over, each cut shaving 2-34
+// faces off its patch while the cone stayed inside). Every patch of man's and armadillo's
+// segmentation, cut through its sharpest interior vertex and its widest border vertex.
+TEST_CASE("sink cuts: a cut the junction repairs move off its vertex is not made") {
+  for (const char* name : {"man.off", "armadillo.off"}) {
+    CAPTURE(name);
+    const EdgeGraph g = buildEdgeGraph(testshapes::dataModel(name));
+    const Segmentation s = segment(g, testshapes::remeshFeatureOptions(g));
+    const auto curveEdges = [&](const Segmentation& seg, uint32_t v) {
+      uint32_t n = 0;
+      for (uint32_t k = g.vertexEdgeStart[v]; k < g.vertexEdgeStart[v + 1]; ++k) n += seg.isCurveEdge(g.vertexEdgeIds[k]);
+      return n;
+    };
+    size_t cuts = 0;
+    for (uint32_t p = 0; p < s.patches.size(); ++p) {
+      // the patch's interior vertex of least angle sum and border vertex of widest wedge
+      std::vector<double> angle(g.vertexCount, 0.0);
+      std::vector<uint8_t> inPatch(g.vertexCount, 0);
+      for (uint32_t f : s.patches[p])
+        for (int c = 0; c < 3; ++c) angle[g.faces[f][c]] += g.cornerAngle(f, c), inPatch[g.faces[f][c]] = 1;
+      uint32_t sink = kNone, corner = kNone;
+      for (uint32_t v = 0; v < g.vertexCount; ++v) {
+        if (!inPatch[v]) continue;
+        if (curveEdges(s, v) == 0 && (sink == kNone || angle[v] < angle[sink])) sink = v;
+        if (curveEdges(s, v) > 0 && (corner == kNone || angle[v] > angle[corner])) corner = v;
+      }
+      CAPTURE(p);
+      if (Segmentation a = s; sink != kNone && cutThroughSink(g, a, p, sink, kPi / 3)) {
+        ++cuts;
+        CHECK(curveEdges(a, sink) >= 2);
+      }
+      if (Segmentation b = s; corner != kNone && cutThroughWideCorner(g, b, p, corner, kPi / 3)) {
+        ++cuts;
+        CHECK(curveEdges(b, corner) > curveEdges(s, corner));
+      }
+    }
+    CHECK(cuts >= 20);
+  }
 }
