@@ -339,7 +339,7 @@ export interface RemeshOptions {
   optimize?: boolean;
   /**
    * A crease that ends inside a smooth region stays a constrained polyline inside its patch's
-   * planar domain, instead of being continued until it closes the region off. Default false.
+   * planar domain, instead of being continued until it closes the region off. Default true.
    */
   innerCreases?: boolean;
   /** The boundary condition each patch's flattening tries first (the others follow when its layout fails). Default 'free'. */
@@ -454,7 +454,7 @@ export interface RemeshReport {
   optimizeCollapses: number;
   /** Free vertices moved over the surface where the 3D angle certificate left a triangle below the bound. */
   repairMoves: number;
-  /** Output triangles predicted from the sizing field before refinement (checked against maxTriangles). */
+  /** Output triangles predicted from the sizing field and the flattened patches' widths before refinement (the prediction from the first segmentation is checked against maxTriangles). */
   estimatedTriangles: number;
   /** The topology check passed (false only in the result of an error, with keepDefectiveOutput). */
   topologyPreserved: boolean;

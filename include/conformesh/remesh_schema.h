@@ -82,8 +82,8 @@ inline bool parseBoundary(const std::string& s, Boundary& b) {
     "merge patches narrower than this (2 area / perimeter, input units) into a neighbour; < 0: half the "               \
     "smallest edge; 0: off")                                                                                            \
   /* a crease ending inside a smooth region need not cut it (docs/decisions/0043-inner-creases.md) */                  \
-  X(bool, innerCreases, false, 0, 1, "--inner-creases", "",                                                             \
-    "keep a crease that ends inside a region as a polyline inside its patch, not continued until it closes the region") \
+  X(bool, innerCreases, true, 0, 1, "--no-inner-creases", "",                                                          \
+    "continue a crease that ends inside a region until it closes the region off (else a polyline inside its patch)")   \
   /* when a layout fails (overlaps itself, or loses precision) the others follow: free, corners, circle */              \
   X(Boundary, boundary, Boundary::Free, 0, 0, "--boundary", "free|corners|circle",                                      \
     "the boundary condition each patch's flattening tries first")                                                       \
@@ -147,7 +147,7 @@ inline bool parseBoundary(const std::string& s, Boundary& b) {
 // optimizeCollapses: edges the optimization collapsed toward regular valences (above a 30° bound,
 // remesh/optimize.h); repairMoves: free vertices moved where the
 // certificate left a triangle below the bound (remesh/repair.h); estimatedTriangles: the output size
-// predicted before refinement (remesh/limits.h); topologyPreserved: false only with
+// predicted from the sizing field and the flattened patches' widths before refinement (remesh/limits.h); topologyPreserved: false only with
 // keepDefectiveOutput; seconds: per stage (conformesh/stages.h).
 #define CONFORMESH_REMESH_REPORT(X)                                                                                     \
   X(size_t, inputTriangles, 0) X(size_t, inputVertices, 0) X(size_t, triangles, 0) X(size_t, vertices, 0)               \

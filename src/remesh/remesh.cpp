@@ -83,6 +83,10 @@ RemeshResult run(const MeshBuffers& input, const RemeshOptions& opt, const Progr
   begin(Stage::Flatten);
   Meshing m;
   m.patches = flattenPatches(surf, opt, progress, rep);
+  // the estimate of the patches the flattening made: its cuts are borders the refinement samples
+  // and grades towards like any other, narrow strips between them included (the one before the
+  // flattening, of the segmentation's patches, bounded the run: prepareSurface)
+  rep.estimatedTriangles = estimateOutput(surf.g, surf.seg, surf.sizing).triangles;
 
   begin(Stage::CurveMesh);
   m.samples.cm = F::sampleCurves(surf.g, surf.seg, surf.sizing);

@@ -95,7 +95,7 @@ describe('remesh', () => {
     }
   });
 
-  it('innerCreases: a crease ending inside a flat square stays inside its one patch, kept as output edges', async () => {
+  it('innerCreases (the default): a crease ending inside a flat square stays inside its one patch, kept as output edges', async () => {
     const n = 20;
     const positions: number[] = [];
     const triangles: number[] = [];
@@ -108,12 +108,12 @@ describe('remesh', () => {
     for (let i = 6; i < 14; ++i) featureEdges.push(at(i, 10), at(i + 1, 10));
     const input = { positions: new Float64Array(positions), triangles: new Uint32Array(triangles) };
     const options = { targetEdgeLengthRel: 0.03, hausdorffSamples: 1000, featureEdges };
-    const inner = await remesh(input, { ...options, innerCreases: true });
+    const inner = await remesh(input, options);
     expect(inner.report.patches).toBe(1);
     expect(inner.report.featureCurvesKept).toBe(inner.report.featureCurves);
     expect(inner.report.featureCurves).toBe(5); // the square's four sides and the crease
     expect(inner.report.trianglesBelowBoundOutsideExempt).toBe(0);
-    const continued = await remesh(input, options);
+    const continued = await remesh(input, { ...options, innerCreases: false });
     expect(continued.report.patches).toBeGreaterThan(1);
   });
 

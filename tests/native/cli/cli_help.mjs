@@ -71,7 +71,7 @@ for (const { name, file, flags } of commands) {
   const dir = mkdtempSync(join(tmpdir(), 'conformesh-help-'));
   try {
     const help = run(['remesh', '--help']).stdout.replace(/\s+/g, ' ');
-    // a flag's default within its own text: a switch without one (--inner-creases) gives none
+    // a flag's default within its own text: a switch without one (--no-inner-creases) gives none
     const given = [...help.matchAll(/ (--[a-z][a-z0-9-]*) \S+ (?:(?! --)[^(])*?\(default ([^)]+)\)/g)]
       .filter(([, flag]) => flag !== '--edge-length' && flag !== '--max-error')
       .flatMap(([, flag, value]) => [flag, value]);
