@@ -40,7 +40,7 @@ const keys = <K extends string>(record: Record<K, 1>) => Object.keys(record) as 
 export const REMESH_OPTION_KEYS = keys({
   minAngle: 1, targetEdgeLength: 1, targetEdgeLengthRel: 1, chordTolerance: 1, chordToleranceRel: 1, maxError: 1,
   maxErrorRel: 1, gradation: 1, minEdgeLength: 1, maxEdgeLength: 1, featureAngle: 1, cornerTurn: 1, minFeatureLength: 1,
-  minPatchWidth: 1, innerCreases: 1, boundary: 1, maxScaleRatio: 1, maxCertificateRounds: 1, optimize: 1, optimizeIterations: 1,
+  minPatchWidth: 1, innerCreases: 1, coneTips: 1, boundary: 1, maxScaleRatio: 1, maxCertificateRounds: 1, optimize: 1, optimizeIterations: 1,
   optimizeTolerance: 1, patches: 1, attributes: 1, surfacePoints: 1, computeHausdorff: 1, hausdorffSamples: 1,
   threads: 1, maxVertices: 1, maxTriangles: 1, maxMemoryBytes: 1, keepDefectiveOutput: 1, forceTopologyDefect: 1,
 } satisfies Record<TableOption, 1>);

@@ -338,6 +338,12 @@ export interface RemeshOptions {
   /** Optimize each patch after refinement (ODT moves and flips judged in 3D; default true). */
   optimize?: boolean;
   /**
+   * Hold the chord tolerance at cone tips too (a vertex whose neighbours lie far off its tangent
+   * plane: the output cuts such a tip off in proportion to the size, not its square). Default
+   * false; error-driven remeshing turns it on for its next attempt when one exceeds the bound.
+   */
+  coneTips?: boolean;
+  /**
    * A crease that ends inside a smooth region stays a constrained polyline inside its patch's
    * planar domain, instead of being continued until it closes the region off. Default true.
    */

@@ -56,6 +56,10 @@ inline bool parseBoundary(const std::string& s, Boundary& b) {
     "chord deviation bound of the curvature sizing (input units); < 0: --chord-tol-rel times the diagonal; 0: off")     \
   X(double, chordToleranceRel, 1e-3, 0, 1e308, "--chord-tol-rel", "R",                                                  \
     "chord deviation bound as a fraction of the bounding-box diagonal, when --chord-tol < 0")                           \
+  /* a cone's tip is cut off linearly in the size, not quadratically (features/sizing.h); error-driven remeshing turns    \
+     it on for its next attempt when one exceeds the bound (remesh/max_error.h) */                                      \
+  X(bool, coneTips, false, 0, 1, "--cone-tips", "",                                                                     \
+    "hold the chord deviation at cone tips too: sizes there bounded by the tolerance over the tip's slope")            \
   /* error-driven: the sizes grow as large as the chord error, the curvature and the angle bound allow; the report's    \
      measured Hausdorff distance is at most this, else IterationLimit (remesh/max_error.h) */                           \
   X(double, maxError, -1.0, -1e308, 1e308, "--max-error", "D",                                                          \

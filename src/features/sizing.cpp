@@ -15,25 +15,39 @@ double boundingBoxDiagonal(const EdgeGraph& g) {
   return g.positions.empty() ? 0.0 : norm(hi - lo);
 }
 
-std::vector<double> surfaceCurvature(const EdgeGraph& g) {
+namespace {
+
+// Per vertex, the largest of edgeTerm(n, d) over its edges d (n: the unit area-weighted vertex
+// normal; 0 where it vanishes).
+template <typename EdgeTerm>
+std::vector<double> largestOverEdges(const EdgeGraph& g, EdgeTerm edgeTerm) {
   std::vector<Vec3> vn(g.vertexCount);  // area-weighted vertex normals
   for (uint32_t f = 0; f < g.faceCount; ++f) {
     const auto& t = g.faces[f];
     Vec3 n = cross(g.positions[t[1]] - g.positions[t[0]], g.positions[t[2]] - g.positions[t[0]]);
     for (uint32_t v : t) vn[v] = vn[v] + n;
   }
-  std::vector<double> kappa(g.vertexCount, 0.0);
+  std::vector<double> out(g.vertexCount, 0.0);
   for (uint32_t v = 0; v < g.vertexCount; ++v) {
     const double ln = norm(vn[v]);
     if (ln == 0) continue;
     const Vec3 n = vn[v] * (1.0 / ln);
     for (uint32_t k = g.vertexEdgeStart[v]; k < g.vertexEdgeStart[v + 1]; ++k) {
       const Vec3 d = g.positions[g.otherVertex(g.vertexEdgeIds[k], v)] - g.positions[v];
-      const double dd = dot(d, d);
-      if (dd > 0) kappa[v] = std::max(kappa[v], 2.0 * std::abs(dot(n, d)) / dd);
+      if (dot(d, d) > 0) out[v] = std::max(out[v], edgeTerm(n, d));
     }
   }
-  return kappa;
+  return out;
+}
+
+}  // namespace
+
+std::vector<double> surfaceCurvature(const EdgeGraph& g) {
+  return largestOverEdges(g, [](const Vec3& n, const Vec3& d) { return 2.0 * std::abs(dot(n, d)) / dot(d, d); });
+}
+
+std::vector<double> surfaceSlope(const EdgeGraph& g) {
+  return largestOverEdges(g, [](const Vec3& n, const Vec3& d) { return std::abs(dot(n, d)) / norm(d); });
 }
 
 SizingField computeSizing(const EdgeGraph& g, const Segmentation& seg, const SizingOptions& o) {
@@ -77,6 +91,7 @@ SizingField computeSizing(const EdgeGraph& g, const Segmentation& seg, const Siz
       }
       return w;
     };
+    const std::vector<double> slope = o.coneTips ? surfaceSlope(g) : std::vector<double>{};
     for (uint32_t v = 0; v < g.vertexCount; ++v) {
       double kappa = 0;
       uint32_t curveEdges[2], nc = 0;
@@ -91,6 +106,7 @@ SizingField computeSizing(const EdgeGraph& g, const Segmentation& seg, const Siz
       // boundary curves: the curve's curvature (the output follows the curve).
       if (nc == 0 || onlyCuts) {
         kappa = kappaSurface[v];
+        if (!slope.empty() && slope[v] > 0) s.h[v] = std::min(s.h[v], std::sqrt(3.0) * tol / slope[v]);
       } else if (nc == 2 && !seg.vertexCorner[v]) {
         Vec3 a = g.positions[v] - g.positions[alongCurve(v, curveEdges[0])];
         Vec3 b = g.positions[alongCurve(v, curveEdges[1])] - g.positions[v];

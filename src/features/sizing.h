@@ -31,6 +31,14 @@ struct SizingOptions {
   //! Optional surface curvature per vertex (surfaceCurvature of the mesh the graph was made
   //! from by splits and flips, carried to the new vertices); empty: surfaceCurvature(g).
   std::vector<double> surfaceKappa;
+  //! Bound the error at cone tips: off the curves, a vertex whose neighbours lie off its tangent
+  //! plane by a slope s (the largest |n·d|/|d| over its edges) is a cone's tip to an output that
+  //! spans it, which cuts it off by about s times its distance to the output's nearest vertex: a
+  //! linear error, where the curvature bound models a quadratic one. h ≤ √3·tol / s there (an
+  //! output vertex within the circumradius h/√3 of the tip). Tighter than the curvature bound only
+  //! where a neighbour lies more than 3/4 tol off the plane. Error-driven remeshing sets it: its
+  //! Hausdorff distance is a bound, and a cut-off tip would tighten the tolerance everywhere.
+  bool coneTips = false;
   //! Vertices from this index on are points that halve an edge of the mesh the graph was made
   //! from: a curve's turn at a vertex is measured to the nearest vertices along it below this
   //! index (the edges as given), so splits do not change it.
@@ -49,6 +57,10 @@ struct SizingField {
 //! vertex normal; 0 where it vanishes). It grows without bound along short edges where n tilts off
 //! a flat face, so it is measured on the input as given, not on a copy with split edges.
 std::vector<double> surfaceCurvature(const EdgeGraph& g);
+
+//! Per vertex, the largest slope |n·d|/|d| of its edges d off its tangent plane (n: the
+//! area-weighted vertex normal; 0 where it vanishes): SizingOptions::coneTips.
+std::vector<double> surfaceSlope(const EdgeGraph& g);
 
 //! Bounding-box diagonal of the mesh.
 double boundingBoxDiagonal(const EdgeGraph& g);

@@ -3,8 +3,9 @@
 // Alliez and Benes, "Error-bounded and feature preserving surface remeshing with minimal angle
 // improvement" (IEEE TVCG 2017), reached here by the curvature sizing's chord tolerance: the
 // whole remesh runs with a tolerance below the bound, its measured Hausdorff distance decides
-// whether the tolerance is tightened (the distance was above the bound) or loosened (far below
-// it: a coarser mesh would do), a few times at most.
+// whether the tolerance is tightened (the distance was above the bound; first the cone tips'
+// sizes alone, RemeshOptions::coneTips) or loosened (far below it: a coarser mesh would do), a
+// few times at most.
 #pragma once
 
 #include <functional>

@@ -135,6 +135,7 @@ Surface prepareSurface(ValidatedMesh vm, const MeshBuffers& input, const RemeshO
   so.gradation = opt.gradation;
   so.minEdgeLength = opt.minEdgeLength;
   so.maxEdgeLength = opt.maxEdgeLength;
+  so.coneTips = opt.coneTips;
   if (errorDriven(opt)) {
     // error-driven (remesh/max_error.h): the chord tolerance and the curvature set the sizes, up
     // to a tenth of the diagonal where the surface is flat, down to a tenth of the target or the

@@ -1022,3 +1022,25 @@ TEST_CASE("features: splitPatch's junction repairs keep at least half of what it
     CHECK(splits >= 10);
   }
 }
+
+// A cone's tip is cut off by an output that spans it by its slope times the distance to the
+// nearest output vertex: a linear error, which the curvature bound (a quadratic one) leaves
+// several tolerances wide at a sharp tip. With coneTips the tip's size puts an output vertex
+// within the tolerance of it; the flanks (slope the same, but on the rim's curve or graded from
+// the tip) are not asked for more.
+TEST_CASE("sizing: coneTips bounds the size at a cone's tip by its slope; off, the curvature alone") {
+  const EdgeGraph g = buildEdgeGraph(testshapes::raisedDisk([](double r) { return 0.5 * (1 - r); }));
+  const Segmentation s = segment(g, FeatureOptions{});
+  const uint32_t tip = 0;  // raisedDisk's centre
+  SizingOptions so;
+  so.targetEdgeLengthRel = 0.05;
+  so.chordToleranceRel = 1e-3;
+  const SizingField plain = computeSizing(g, s, so);
+  so.coneTips = true;
+  const SizingField cone = computeSizing(g, s, so);
+  const double tol = 1e-3 * cone.diagonal, slope = surfaceSlope(g)[tip];
+  CHECK(slope == doctest::Approx(0.5 / std::sqrt(1.25)));
+  CHECK(cone.h[tip] <= std::max(cone.minLength, std::sqrt(3.0) * tol / slope) * (1 + 1e-12));
+  CHECK(plain.h[tip] > 1.5 * cone.h[tip]);
+  for (uint32_t v = 0; v < g.vertexCount; ++v) CHECK(cone.h[v] <= plain.h[v] * (1 + 1e-12));
+}

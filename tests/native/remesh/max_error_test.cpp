@@ -4,6 +4,8 @@
 #include <doctest/doctest.h>
 
 #include <cmath>
+#include <string>
+#include <vector>
 
 #include "features/test_shapes.h"
 #include "quality/metrics.h"
@@ -99,4 +101,33 @@ TEST_CASE("max error: non-finite bounds and a negative maxErrorRel are InvalidAr
     CHECK(r.mesh.positions == plain.mesh.positions);
     CHECK(r.mesh.triangles == plain.mesh.triangles);
   }
+}
+
+// Above the bound, the next attempt first bounds the sizes at cone tips at the same tolerance
+// (RemeshOptions::coneTips): a cut-off tip is a local excess, which a tighter tolerance mends
+// only by refining everywhere. A cone over a disk: its tip's error is the cone's slope times the
+// distance to the nearest output vertex.
+TEST_CASE("max error: a cone's tip cut off by the first attempt is mended by the cone tips' sizes, not a tighter tolerance") {
+  const MeshBuffers cone = testshapes::raisedDisk([](double r) { return 1.0 * (1 - r); });
+  const RemeshResult r = withinError(cone, 1e-3);
+  std::vector<std::string> attempts;
+  for (const std::string& w : r.report.warnings)
+    if (w.rfind("max error: attempt", 0) == 0) attempts.push_back(w);
+  INFO(attempts.size() << " attempts; last: " << (attempts.empty() ? "" : attempts.back()));
+  REQUIRE(attempts.size() >= 2);
+  CHECK(attempts[0].find("cone tips") == std::string::npos);
+  CHECK(attempts[1].find("cone tips") != std::string::npos);
+  // the same tolerance
+  const auto tolerance = [](const std::string& w) {
+    const size_t at = w.find("tolerance ");
+    return w.substr(at, w.find_first_of("),", at) - at);
+  };
+  CHECK(tolerance(attempts[1]) == tolerance(attempts[0]));
+  // with them on from the start, one attempt
+  RemeshOptions o;
+  o.maxErrorRel = 1e-3;
+  o.coneTips = true;
+  const RemeshResult tips = remesh(cone, o);
+  REQUIRE(tips.status.ok());
+  CHECK(tips.report.hausdorffRel <= 1e-3);
 }
