@@ -26,11 +26,10 @@ namespace conformesh::features {
 //! the patch on no curve) to its border, leaving the sink in roughly opposite directions (the
 //! second turns at least 3/8 of the 3D angle around the sink away from the first, and each side
 //! keeps at least `minWedge` radians). The edges become Cut edges; the junction repairs of a
-//! split follow (features/cut_junctions.h, close_junctions.h), over the patch only. False, with
-//! the segmentation as it was, when there is no such pair of paths or the patch would not end
-//! up as two or more disks, or the segmentation with no more patches than before, or the
-//! junction repairs move the cut off the sink; also false when the sink is nearer the border than
-//! `minDepth` (along the first path). `others`: further sinks
+//! split follow (repairNewCuts, over the patch only; none that takes the cut off the sink). False,
+//! with the segmentation as it was, when there is no such pair of paths or the patch would not
+//! end up as two or more disks, or the segmentation with no more patches than before; also false
+//! when the sink is nearer the border than `minDepth` (along the first path). `others`: further sinks
 //! of p (vertices on no curve); the second path may pass through them on its way to the border,
 //! each time to the nearest one left when it is nearer than the border and leaving it as the
 //! sink is left (3/8 of its angle sum from where the path came), at most 8 of them: one cut then
