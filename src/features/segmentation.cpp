@@ -518,14 +518,16 @@ uint32_t curveValence(const EdgeGraph& g, const Segmentation& seg, uint32_t v) {
 }
 
 void repairNewCuts(const EdgeGraph& g, Segmentation& seg, const std::vector<uint32_t>& region, uint32_t through) {
+  // the most of region one part may hold after a repair: less than all of it, and at most half
+  // of what the cuts parted off the largest part back in it
   const size_t parted = region.size() - largestShare(seg, region);
-  const size_t mostKept = region.size() - (parted + 1) / 2;
+  const size_t mostKept = region.size() - std::max<size_t>(1, (parted + 1) / 2);
   const auto valence = [&] { return through == kNone ? 0 : curveValence(g, seg, through); };
   const uint32_t cutValence = valence();
   const auto keepingSplit = [&](auto&& repair) {
     const std::vector<EdgeKind> before = seg.edgeKind;
     const uint32_t cutEdges = seg.cutEdgeCount, rerouted = seg.reroutedCutEnds;
-    if (repair() > 0 && (patchesOver(seg, region) < 2 || largestShare(seg, region) > mostKept || valence() < cutValence)) {
+    if (repair() > 0 && (largestShare(seg, region) > mostKept || valence() < cutValence)) {
       seg.edgeKind = before;
       seg.cutEdgeCount = cutEdges;
       seg.reroutedCutEnds = rerouted;

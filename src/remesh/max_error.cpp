@@ -56,8 +56,8 @@ RemeshResult remeshWithinError(const MeshBuffers& input, const RemeshOptions& op
   double lo = 0, hi = INFINITY, factor = kFirstToleranceFactor;
   std::vector<std::string> notes;
   std::vector<std::pair<double, double>> attempts;  // chord tolerance, measured distance
-  bool coneTips = options.coneTips, triedConeTips = false;
-  double withoutConeTips = INFINITY;  // the distance of the attempt before the cone tips were tried
+  bool coneTips = options.coneTips;
+  double withoutConeTips = INFINITY;  // the distance of the attempt before the cone tips were tried (∞: not tried)
   for (int a = 0; a < kMaxAttempts; ++a) {
     RemeshOptions o = options;
     o.chordTolerance = factor * bound;
@@ -75,13 +75,13 @@ RemeshResult remeshWithinError(const MeshBuffers& input, const RemeshOptions& op
       lo = std::max(lo, factor);
       // close enough, or no distance to scale by (the output lies on the input)
       if (distance >= kCloseEnoughFraction * bound || !(distance > 0)) break;
-    } else if (!o.coneTips && !triedConeTips) {
+    } else if (!o.coneTips && withoutConeTips == INFINITY) {
       // above the bound: first where the curvature bound is blind (a cone's tip the output cuts
       // off in proportion to its size: features/sizing.h), at the same tolerance; the tolerance
       // is tightened everywhere only when that is not enough. ChineseDragon-10kv with inner
       // creases: 391,626 triangles 0.211 (1.25 times the bound) at the first tolerance; with
       // cone tips 524,450 at 0.123; tightened instead, 933,522 at 0.104.
-      coneTips = triedConeTips = true;
+      coneTips = true;
       withoutConeTips = distance;
       continue;
     } else {

@@ -241,11 +241,6 @@ TEST_CASE("sink cuts: a cut the junction repairs move off its vertex is not made
     CAPTURE(name);
     const EdgeGraph g = buildEdgeGraph(testshapes::dataModel(name));
     const Segmentation s = segment(g, testshapes::remeshFeatureOptions(g));
-    const auto curveEdges = [&](const Segmentation& seg, uint32_t v) {
-      uint32_t n = 0;
-      for (uint32_t k = g.vertexEdgeStart[v]; k < g.vertexEdgeStart[v + 1]; ++k) n += seg.isCurveEdge(g.vertexEdgeIds[k]);
-      return n;
-    };
     size_t cuts = 0;
     for (uint32_t p = 0; p < s.patches.size(); ++p) {
       // the patch's interior vertex of least angle sum and border vertex of widest wedge
@@ -256,17 +251,17 @@ TEST_CASE("sink cuts: a cut the junction repairs move off its vertex is not made
       uint32_t sink = kNone, corner = kNone;
       for (uint32_t v = 0; v < g.vertexCount; ++v) {
         if (!inPatch[v]) continue;
-        if (curveEdges(s, v) == 0 && (sink == kNone || angle[v] < angle[sink])) sink = v;
-        if (curveEdges(s, v) > 0 && (corner == kNone || angle[v] > angle[corner])) corner = v;
+        if (curveValence(g, s, v) == 0 && (sink == kNone || angle[v] < angle[sink])) sink = v;
+        if (curveValence(g, s, v) > 0 && (corner == kNone || angle[v] > angle[corner])) corner = v;
       }
       CAPTURE(p);
       if (Segmentation a = s; sink != kNone && cutThroughSink(g, a, p, sink, kPi / 3)) {
         ++cuts;
-        CHECK(curveEdges(a, sink) >= 2);
+        CHECK(curveValence(g, a, sink) >= 2);
       }
       if (Segmentation b = s; corner != kNone && cutThroughWideCorner(g, b, p, corner, kPi / 3)) {
         ++cuts;
-        CHECK(curveEdges(b, corner) > curveEdges(s, corner));
+        CHECK(curveValence(g, b, corner) > curveValence(g, s, corner));
       }
     }
     CHECK(cuts >= 20);
