@@ -52,7 +52,7 @@ export const REMESH_REPORT_KEYS = keys({
   trianglesBelowBoundOutsideExempt: 1, exemptCorners: 1, hausdorffRel: 1, maxDistanceToInputRel: 1,
   meanEdgeLength: 1, targetEdgeLength: 1, delaunayFraction: 1, featureCurves: 1, featureCurvesKept: 1,
   sharpEdges: 1, cutEdges: 1, droppedFeatureEdges: 1, seamEdges: 1, patches: 1, curves: 1, curveSamples: 1,
-  flowIterations: 1, patchSplitsForScale: 1, sinkCuts: 1, conformingRounds: 1, certificateRounds: 1, optimizeMoves: 1,
+  flowIterations: 1, patchSplitsForScale: 1, sinkCuts: 1, patchJoins: 1, conformingRounds: 1, certificateRounds: 1, optimizeMoves: 1,
   optimizeFlips: 1, optimizeSplits: 1, optimizeCollapses: 1, repairMoves: 1, estimatedTriangles: 1, topologyPreserved: 1, seconds: 1, warnings: 1,
 } satisfies Record<keyof RemeshReport, 1>);
 

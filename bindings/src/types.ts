@@ -449,6 +449,8 @@ export interface RemeshReport {
   patchSplitsForScale: number;
   /** Patches cut in two through the point where their flattening's scale sank (a finger tip). */
   sinkCuts: number;
+  /** Narrow patches joined to a neighbour once every patch was flattened (the joins kept). */
+  patchJoins: number;
   conformingRounds: number;
   certificateRounds: number;
   /** Vertex moves and edge flips accepted by the optimization. */

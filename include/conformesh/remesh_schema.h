@@ -145,7 +145,9 @@ inline bool parseBoundary(const std::string& s, Boundary& b) {
 // not to be creases (minFeatureLength); seamEdges: input edges kept as curves for being attribute
 // seams; flowIterations: Newton iterations per patch; patchSplitsForScale: geodesic Voronoi splits
 // of patches whose flattening failed or spread its scale past maxScaleRatio; sinkCuts: patches cut
-// in two through the point their scale sank to or a spike tip (features/sink_cuts.h); optimizeMoves, optimizeFlips: accepted by the
+// in two through the point their scale sank to or a spike tip (features/sink_cuts.h); patchJoins:
+// narrow patches joined to a neighbour once flattened, the joins kept (remesh/flatten_patches.cpp);
+// optimizeMoves, optimizeFlips: accepted by the
 // optimization (moves include curve-sample slides); optimizeSplits: vertices the optimization added
 // where its moves and flips left a triangle below the bound (remesh/split_below_bound.h);
 // optimizeCollapses: edges the optimization collapsed toward regular valences (above a 30° bound,
@@ -166,6 +168,7 @@ inline bool parseBoundary(const std::string& s, Boundary& b) {
   X(size_t, droppedFeatureEdges, 0) X(size_t, seamEdges, 0)                                                             \
   X(size_t, patches, 0) X(size_t, curves, 0) X(size_t, curveSamples, 0)                                                 \
   X(std::vector<int>, flowIterations, {}) X(size_t, patchSplitsForScale, 0) X(size_t, sinkCuts, 0)                       \
+  X(size_t, patchJoins, 0)                                                                                              \
   X(int, conformingRounds, 0) X(int, certificateRounds, 0)                                                              \
   X(size_t, optimizeMoves, 0) X(size_t, optimizeFlips, 0) X(size_t, optimizeSplits, 0)                                  \
   X(size_t, optimizeCollapses, 0)                                                                                       \

@@ -427,6 +427,10 @@ uint32_t straightenCutEars(const EdgeGraph& g, Segmentation& seg, const std::vec
           // v keeps no curve edge or at least two (a dangling end would be a slit)
           if (!ok || int(valence(v)) - 1 - int(cutB) == 1) continue;
           const double before = wedgeAround(v, rim);
+          // the rim's ends as they were: a move may not leave one narrower than kEar and than it was
+          // (the ear moved onto a curve's end, where a crease continues into the cut)
+          const double beforeA = smallestWedge(g, rim.front(), isCurve, scratch);
+          const double beforeC = smallestWedge(g, rim.back(), isCurve, scratch);
           toggled.clear();
           auto flipKind = [&](uint32_t e) { seg.edgeKind[e] = seg.edgeKind[e] == EdgeKind::Cut ? EdgeKind::None : EdgeKind::Cut; };
           auto toggle = [&](uint32_t e) {
@@ -444,6 +448,8 @@ uint32_t straightenCutEars(const EdgeGraph& g, Segmentation& seg, const std::vec
           // leave a feature's end dangling keeps the old cut.
           ok = pruneDanglingCuts(g, seg, rim, std::ptrdiff_t(kMaxPrune) - std::ptrdiff_t(toggled.size()), toggle);
           ok = ok && wedgeAround(v, rim) > before + kGain;
+          ok = ok && smallestWedge(g, rim.front(), isCurve, scratch) >= std::min(kEar, beforeA) &&
+               smallestWedge(g, rim.back(), isCurve, scratch) >= std::min(kEar, beforeC);
           // a move that took an old cut off the rim or pruned a branch regroups faces of more
           // than two patches: it is kept only when every patch it touches stays a disk
           // (checked at once, so that one such move cannot undo all the others at the end)

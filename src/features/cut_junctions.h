@@ -23,7 +23,9 @@ uint32_t improveCutJunctions(const EdgeGraph& g, Segmentation& seg, double scale
 //! Where a cut makes a wedge below 45° at a vertex (a kink in the cut, or a cut leaving another
 //! curve at a small angle), move the cut across the wedge's faces: its edges at the vertex stop
 //! being cuts and the far edges of the wedge's faces (the rim) become the cut. Kept when the
-//! smallest wedge at the vertex and along the rim grows; every patch must stay a disk (else all
+//! smallest wedge at the vertex and along the rim grows and neither end of the rim is left
+//! narrower than 45° and than it was (an ear moved onto the end of a crease the cut continues
+//! stays below the bound there: elk at 20°, 26°); every patch must stay a disk (else all
 //! moves are undone). Cuts follow input edges, so at the scale of one input edge they can
 //! zigzag: the patch there has a corner no mesh can give better angles, and the 3D certificate
 //! cannot refine it away. Returns the number of moves. `region` (input faces; empty: all): only

@@ -11,7 +11,8 @@
 
 namespace conformesh::features {
 
-uint32_t mergeCutPatches(const EdgeGraph& g, Segmentation& seg, double maxWidth, const std::vector<uint32_t>& region) {
+uint32_t mergeCutPatches(const EdgeGraph& g, Segmentation& seg, double maxWidth, const std::vector<uint32_t>& region,
+                         const std::vector<uint8_t>& keep, bool pairs, size_t maxFaces) {
   const uint32_t P = uint32_t(seg.patches.size());
   if (P < 2 || !(maxWidth > 0)) return 0;
   UnionFind groups(P);
@@ -32,17 +33,19 @@ uint32_t mergeCutPatches(const EdgeGraph& g, Segmentation& seg, double maxWidth,
   order.erase(std::remove_if(order.begin(), order.end(), [&](uint32_t p) { return !inRegion[p]; }), order.end());
   std::vector<uint8_t> mask = seg.curveMask();
   uint32_t joins = 0;
+  size_t joinedFaces = 0;  // in the joined patches (pairs)
   std::vector<std::pair<uint32_t, uint32_t>> cuts;  // (neighbour group, cut edge) around a group
   std::vector<std::pair<size_t, size_t>> runs;      // [begin, end) of each neighbour's cut edges
   for (uint32_t p : order) {
     if (groups.find(p) != p || !narrow(p)) continue;  // joined into another, or grown past the width
+    if (pairs && faces[p].size() != seg.patches[p].size()) continue;  // joined already
     cuts.clear();
     for (uint32_t f : faces[p])
       for (uint32_t e : g.faceEdges[f]) {
         if (seg.edgeKind[e] != EdgeKind::Cut) continue;
         const uint32_t across = g.edgeFaces[e][0] == f ? g.edgeFaces[e][1] : g.edgeFaces[e][0];  // a cut edge has two faces
         const uint32_t b = groups.find(seg.facePatch[across]);
-        if (b != p && inRegion[b]) cuts.push_back({b, e});
+        if (b != p && inRegion[b] && (!pairs || faces[b].size() == seg.patches[b].size())) cuts.push_back({b, e});
       }
     std::sort(cuts.begin(), cuts.end());
     runs.clear();
@@ -56,6 +59,9 @@ uint32_t mergeCutPatches(const EdgeGraph& g, Segmentation& seg, double maxWidth,
     std::stable_sort(runs.begin(), runs.end(), [](const auto& x, const auto& y) { return x.second - x.first > y.second - y.first; });
     for (const auto& [begin, end] : runs) {
       const uint32_t b = cuts[begin].first;
+      if (pairs && faces[p].size() + faces[b].size() > maxFaces - joinedFaces) continue;
+      if (!keep.empty() && std::any_of(cuts.begin() + long(begin), cuts.begin() + long(end), [&](const auto& c) { return keep[c.second] != 0; }))
+        continue;
       double between = 0;  // length of the shared cut edges
       for (size_t k = begin; k < end; ++k) mask[cuts[k].second] = 0, between += g.edgeLength(cuts[k].second);
       std::vector<uint32_t> joined = faces[p];
@@ -68,6 +74,7 @@ uint32_t mergeCutPatches(const EdgeGraph& g, Segmentation& seg, double maxWidth,
         seg.edgeKind[cuts[k].second] = EdgeKind::None;
         --seg.cutEdgeCount;
       }
+      joinedFaces += faces[p].size() + faces[b].size();
       groups.unite(p, b);
       const uint32_t root = groups.find(p), gone = root == p ? b : p;
       faces[root] = std::move(joined);

@@ -1,5 +1,6 @@
 // conformesh — segmentation step: narrow patches that only cuts border, joined to a neighbour.
 #pragma once
+#include <cstddef>
 #include <cstdint>
 #include "features/edge_graph.h"
 #include "features/segmentation.h"
@@ -15,7 +16,11 @@ namespace conformesh::features {
 //! union a disk; one pass, each patch tried once against its neighbours as they are by then.
 //! The cut edges between joined patches become plain edges; the caller rebuilds the curves.
 //! maxWidth <= 0 joins none. `region` (input faces; empty: all): only the patches over it join,
-//! and only each other. Returns the number of joins. O(Σ over the tries of the two patches'
-//! faces). docs/decisions/0041.
-uint32_t mergeCutPatches(const EdgeGraph& g, Segmentation& seg, double maxWidth, const std::vector<uint32_t>& region = {});
+//! and only each other. `keep` (per edge; empty: none): cut edges no join makes plain, a
+//! neighbour across one is not joined. `pairs`: each patch takes part in one join at most (each
+//! joined patch is two of the patches as they were), and the joined patches hold at most
+//! `maxFaces` faces together (a join that would pass it is skipped). Returns the number of
+//! joins. O(Σ over the tries of the two patches' faces). docs/decisions/0041.
+uint32_t mergeCutPatches(const EdgeGraph& g, Segmentation& seg, double maxWidth, const std::vector<uint32_t>& region = {},
+                         const std::vector<uint8_t>& keep = {}, bool pairs = false, size_t maxFaces = SIZE_MAX);
 }  // namespace conformesh::features

@@ -1,6 +1,7 @@
 #include "remesh/flatten_patches.h"
 #include "core/constants.h"
 #include "core/parallel_for.h"
+#include "features/merge_cut_patches.h"
 #include "features/sink_cuts.h"
 #include "remesh/curve_samples.h"
 
@@ -41,6 +42,21 @@ constexpr double kSinkDepth = 2.0;
 // map must open inside the patch: with a long border edge in its star, no u with the border's
 // fixed keeps every triangle valid). man: a 299° vertex failed from 2,026 faces down to 8.
 constexpr double kConeGap = 0.25 * kPi;
+
+// Once every patch is flattened, the patches narrower than this many output edges (twice the
+// area over the perimeter) are joined, two at a time, to a neighbour across the cuts between them
+// (features/merge_cut_patches.h), and each joined patch is flattened: it stays unless it fails,
+// asks for a split, spreads its scale past both kSinkScaleRatio and its parts' spread, or has a
+// spike tip sharper than its parts' (its cuts then come back, with its parts' flattenings). The
+// cuts the flattening makes (closing inner creases, sinks, spikes, splits) leave narrow parts
+// beside older cuts that only add border and junctions (man: 79 patches, 23 of them under 60
+// faces). The joined patches hold at most the input's faces together: one more flattening of the
+// input at most (docs/decisions/0050).
+constexpr double kJoinWidth = 3.0;
+
+// Rounds of joining (a hard cap; a round with no join ends them): an undone join's cuts are
+// never made plain again, so its narrow patch tries its next neighbour in the next round.
+constexpr int kJoinRounds = 4;
 
 // An interior vertex is a spike tip when its angle sum is below this many times the angle bound:
 // a fan of that many triangles around a flat point has angles of 2π over that many there, the
@@ -138,6 +154,12 @@ std::vector<uint32_t> otherSinks(const PatchWork& w, double ratio) {
   for (size_t v = 0; v < nv; ++v)
     if (candidate[v] && top > ratio * w.scaleSub[v]) sinks.push_back(w.pm.vertexInput[v]);
   return sinks;
+}
+
+// The spread of a flattened patch's scale (Flattening::scaleRatio).
+double spreadOf(const PatchWork& w) {
+  const auto [lo, hi] = std::minmax_element(w.scaleSub.begin(), w.scaleSub.end());
+  return w.scaleSub.empty() ? 1.0 : *hi / *lo;
 }
 
 // Vertex v (input) is on an inner curve (features/segmentation.h).
@@ -394,6 +416,18 @@ Patches flattenPatches(Surface& surf, const RemeshOptions& opt, const Progress& 
   // an interior vertex whose angle sum is below this is a spike tip (kSpikeTipFan)
   const double spikeAngle = kSpikeTipFan * opt.minAngle * kPi / 180;
   std::set<uint64_t> lateral;  // segmentations left by splits that made no more patches
+  int joinRounds = 0;  // of joining narrow patches (kJoinWidth)
+  // the faces the joined patches may still hold: each is flattened again, and together they cost
+  // at most one more flattening of the whole input
+  size_t joinFaces = surf.g.faceCount;
+  std::vector<uint8_t> kept;  // per edge: a cut a join made plain that was restored
+  // each joined patch by its key: the cut edges the join made plain (restored when its flattening
+  // is worse than its parts'), its parts' largest scale spread and smallest interior angle sum
+  struct Join {
+    std::vector<uint32_t> plain;
+    double spread = 1, cone = 2 * kPi;
+  };
+  std::map<std::vector<uint32_t>, Join> joins;
   for (int round = 0;; ++round) {
     if (round > 64 + 2 * int(maxPatches) || surf.seg.patches.size() > maxPatches)
       fail(Code::IterationLimit, Stage::Flatten,
@@ -414,6 +448,7 @@ Patches flattenPatches(Surface& surf, const RemeshOptions& opt, const Progress& 
     spare.clear();
     const double total = double(surf.seg.patches.size() + 1);
     bool split = false;
+    std::vector<std::vector<uint32_t>> undo;  // the keys of the joined patches to take apart
     for (size_t from = 0, to = 0; from < todo.size() && !split; from = to) {
       // the next window of them flattened apart, on the threads (largest first) ...
       to = windowEnd(todo, from);
@@ -440,6 +475,16 @@ Patches flattenPatches(Surface& surf, const RemeshOptions& opt, const Progress& 
           continue;
         }
         if (f.error) std::rethrow_exception(f.error);
+        // a joined patch flattened worse than its parts: the join undone at the end of the round
+        // (kJoinWidth), its parts' flattenings kept
+        if (const auto join = joins.find(keyOf(faces)); join != joins.end()) {
+          const Join& j = join->second;
+          if (!f.flattened || f.splitAsked || f.scaleSplit || f.scaleRatio > std::max(kSinkScaleRatio, j.spread) ||
+              farFromFlat(f.w->pm).coneAngle < std::min(spikeAngle, j.cone)) {
+            undo.push_back(join->first);
+            continue;
+          }
+        }
         // a flattening that fails or spreads its scale too far with creases inside: those creases
         // continued until they close their parts off first, as the segmentation does without
         // inner creases (features/segmentation.h)
@@ -513,7 +558,48 @@ Patches flattenPatches(Surface& surf, const RemeshOptions& opt, const Progress& 
         advance(double(cache.size()) / total);
       }
     }
-    if (split) continue;
+    // a join is undone only where the round left its patch as it was (a split's repairs may
+    // have rerouted a cut through it; the patch is then flattened again as it is)
+    for (const auto& key : undo) {
+      const auto join = joins.find(key);
+      const std::vector<uint32_t>& plain = join->second.plain;
+      if (keyOf(surf.seg.patches[surf.seg.facePatch[surf.g.edgeFaces[plain[0]][0]]]) != key) continue;
+      for (const uint32_t e : plain) surf.seg.edgeKind[e] = F::EdgeKind::Cut, kept[e] = 1;
+      surf.seg.cutEdgeCount += uint32_t(plain.size());
+      joins.erase(join);
+      --rep.patchJoins;
+    }
+    if (!undo.empty()) F::rebuildCurves(surf.g, surf.seg);
+    if (split || !undo.empty()) continue;
+    if (joinRounds < kJoinRounds) {
+      ++joinRounds;
+      kept.resize(surf.g.edgeCount(), 0);
+      joins.clear();
+      const std::vector<F::EdgeKind> before = surf.seg.edgeKind;
+      const std::vector<uint32_t> partOf = surf.seg.facePatch;
+      const std::vector<std::vector<uint32_t>> parts = surf.seg.patches;
+      if (const uint32_t n = F::mergeCutPatches(surf.g, surf.seg, kJoinWidth * surf.seg.junctionScale, {}, kept, true, joinFaces); n > 0) {
+        F::rebuildCurves(surf.g, surf.seg);
+        std::map<uint32_t, Join> made;  // by the joined patch
+        for (uint32_t e = 0; e < before.size(); ++e)
+          if (before[e] != surf.seg.edgeKind[e]) made[surf.seg.facePatch[surf.g.edgeFaces[e][0]]].plain.push_back(e);
+        std::vector<uint8_t> seen(parts.size(), 0);
+        for (auto& [q, j] : made)
+          for (const uint32_t f : surf.seg.patches[q])
+            if (!seen[partOf[f]]) {
+              seen[partOf[f]] = 1;
+              const PatchWork& w = *cache.at(keyOf(parts[partOf[f]]));
+              j.spread = std::max(j.spread, spreadOf(w));
+              j.cone = std::min(j.cone, farFromFlat(w.pm).coneAngle);
+            }
+        for (auto& [q, j] : made) {
+          joinFaces -= surf.seg.patches[q].size();
+          joins.emplace(keyOf(surf.seg.patches[q]), std::move(j));
+        }
+        rep.patchJoins += made.size();
+        continue;
+      }
+    }
     Patches work;
     for (const auto& faces : surf.seg.patches) work.push_back(std::move(cache.at(keyOf(faces))));
     // the same edges as at its flattening (the patch and its cuts are the same), under the curve

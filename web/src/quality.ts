@@ -78,6 +78,7 @@ export const QUALITY: readonly QualityEntry[] = [
   { key: 'flowIterations', label: 'conformal flow iterations per patch', unit: 'counts', group: 'pipeline' },
   { key: 'patchSplitsForScale', label: 'patch splits to bound the scale', unit: 'count', group: 'pipeline' },
   { key: 'sinkCuts', label: 'patches cut through a sink of the scale or a spike tip', unit: 'count', group: 'pipeline' },
+  { key: 'patchJoins', label: 'narrow patches joined to a neighbour', unit: 'count', group: 'pipeline' },
   { key: 'estimatedTriangles', label: 'triangles estimated before refining', unit: 'count', group: 'pipeline' },
   { key: 'conformingRounds', label: 'conforming rounds', unit: 'count', group: 'pipeline' },
   { key: 'certificateRounds', label: '3D angle check rounds', unit: 'count', group: 'pipeline' },

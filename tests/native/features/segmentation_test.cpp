@@ -990,6 +990,37 @@ TEST_CASE("features: mergeCutPatches joins a strip narrower than the width acros
     for (uint32_t e = 0; e < g.edgeCount(); ++e)
       if (before.edgeKind[e] != EdgeKind::Cut) CHECK(s.edgeKind[e] == before.edgeKind[e]);
   }
+  SUBCASE("man at 1 %, in pairs: each joined patch is two patches as they were, no kept cut made plain, the faces bounded") {
+    const EdgeGraph g = buildEdgeGraph(testshapes::dataModel("man.off"));
+    const double target = 0.01 * boundingBoxDiagonal(g);
+    FeatureOptions fo;
+    fo.minFeatureLength = 2 * target;
+    const Segmentation before = segment(g, fo);
+    // every other cut edge kept
+    std::vector<uint8_t> keep(g.edgeCount(), 0);
+    size_t cuts = 0;
+    for (uint32_t e = 0; e < g.edgeCount(); ++e)
+      if (before.edgeKind[e] == EdgeKind::Cut) keep[e] = cuts++ % 2;
+    for (const size_t maxFaces : {size_t(g.faceCount / 8), size_t(g.faceCount)}) {
+      CAPTURE(maxFaces);
+      Segmentation s = before;
+      const uint32_t joins = mergeCutPatches(g, s, 3 * target, {}, keep, true, maxFaces);
+      rebuildCurves(g, s);
+      CHECK(joins > 0);
+      CHECK(s.patches.size() == before.patches.size() - joins);
+      checkPatchesAreDisks(g, s);
+      for (uint32_t e = 0; e < g.edgeCount(); ++e)
+        if (keep[e] || before.edgeKind[e] != EdgeKind::Cut) CHECK(s.edgeKind[e] == before.edgeKind[e]);
+      size_t joinedFaces = 0;
+      for (const auto& faces : s.patches) {
+        std::set<uint32_t> parts;
+        for (uint32_t f : faces) parts.insert(before.facePatch[f]);
+        CHECK(parts.size() <= 2);
+        if (parts.size() == 2) joinedFaces += faces.size();
+      }
+      CHECK(joinedFaces <= maxFaces);
+    }
+  }
 }
 
 // The junction repairs after a split (improveCutJunctions reroutes cut ends, the others move ears,

@@ -446,6 +446,24 @@ TEST_CASE("remesh: ChineseDragon-10kv with inner creases: fewer patches, every c
   CHECK(r.report.meanMinAngle >= 50.0);
 }
 
+// The cuts the flattening makes (inner creases closed, sink, spike and split cuts) leave narrow
+// patches beside older cuts; once every patch is flattened they are joined to a neighbour, two at
+// a time, and a joined patch flattened worse than its parts is taken apart again. man had 79
+// patches, camel 56 (23 and 20 of them narrower than three output edges).
+TEST_CASE("remesh: man and camel at the defaults: narrow patches joined, at most 64 patches, the bound held") {
+  for (const char* name : {"man.off", "camel.off"}) {
+    CAPTURE(name);
+    ReadResult rr = readMesh(test::readFile(std::string(CONFORMESH_DATA_DIR) + "/" + name));
+    RemeshOptions o;
+    o.hausdorffSamples = 5000;
+    const RemeshResult r = checkRemesh(rr.mesh, o, name, false);
+    CHECK(r.report.patchJoins > 0);
+    CHECK(r.report.patches <= 64);
+    CHECK(r.report.meanMinAngle >= 50.0);
+    CHECK(r.report.triangles <= 1.33 * r.report.estimatedTriangles);
+  }
+}
+
 // elk at a 20° feature angle: a patch with twelve inner curves, four of them meeting at a saddle
 // (angle sum 432°, 35° between two of them) whose flattening shrinks those wedges. The triangles
 // there have three curve samples: the optimization must be free to split a chord between two
