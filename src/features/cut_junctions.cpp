@@ -27,41 +27,41 @@ Vec3 pointAlong(const EdgeGraph& g, const std::vector<uint32_t>& path, double le
   return g.positions[path.back()];
 }
 
-// The faces of patches a and b (as they were) regrouped across the edges that are not curves now:
-// exactly two groups, each a disk.
-bool splitsIntoTwoDisks(const EdgeGraph& g, const Segmentation& seg, const std::vector<uint8_t>& mask,
-                        const std::vector<uint32_t>& a, const std::vector<uint32_t>& b) {
-  std::vector<uint32_t> faces(a);
-  faces.insert(faces.end(), b.begin(), b.end());
-  std::sort(faces.begin(), faces.end());
-  std::vector<uint32_t> label(faces.size(), kNone), stack;
-  auto slot = [&](uint32_t f) {
-    auto it = std::lower_bound(faces.begin(), faces.end(), f);
-    return it != faces.end() && *it == f ? uint32_t(it - faces.begin()) : kNone;
-  };
+// The faces of patches A and B (as the last rebuild numbered them) regrouped across the edges that
+// are not curves now: exactly two groups, each a disk. label: per input face, kNone outside a call
+// (a scratch the caller keeps, so that a call costs the two patches, not the mesh).
+bool splitsIntoTwoDisks(const EdgeGraph& g, const Segmentation& seg, const std::vector<uint8_t>& mask, uint32_t A, uint32_t B,
+                        std::vector<uint32_t>& label) {
   std::vector<std::vector<uint32_t>> groups;
-  for (uint32_t i0 = 0; i0 < faces.size(); ++i0) {
-    if (label[i0] != kNone) continue;
-    if (groups.size() == 2) return false;
-    label[i0] = uint32_t(groups.size());
-    groups.emplace_back();
-    stack.push_back(i0);
-    while (!stack.empty()) {
-      const uint32_t i = stack.back();
-      stack.pop_back();
-      groups.back().push_back(faces[i]);
-      for (uint32_t e : g.faceEdges[faces[i]]) {
-        if (seg.isCurveEdge(e)) continue;
-        const uint32_t o = g.edgeFaces[e][0] == faces[i] ? g.edgeFaces[e][1] : g.edgeFaces[e][0];
-        const uint32_t j = o == kNone ? kNone : slot(o);
-        if (j != kNone && label[j] == kNone) {
-          label[j] = label[i];
-          stack.push_back(j);
+  std::vector<uint32_t> stack;
+  bool more = false;  // a third group
+  for (const uint32_t P : {A, B})
+    for (const uint32_t f0 : seg.patches[P]) {
+      if (label[f0] != kNone) continue;
+      if (groups.size() == 2) {
+        more = true;
+        break;
+      }
+      label[f0] = uint32_t(groups.size());
+      groups.emplace_back();
+      stack.push_back(f0);
+      while (!stack.empty()) {
+        const uint32_t f = stack.back();
+        stack.pop_back();
+        groups.back().push_back(f);
+        for (uint32_t e : g.faceEdges[f]) {
+          if (seg.isCurveEdge(e)) continue;
+          const uint32_t o = g.edgeFaces[e][0] == f ? g.edgeFaces[e][1] : g.edgeFaces[e][0];
+          if (o != kNone && label[o] == kNone && (seg.facePatch[o] == A || seg.facePatch[o] == B)) {
+            label[o] = label[f];
+            stack.push_back(o);
+          }
         }
       }
     }
-  }
-  if (groups.size() != 2) return false;
+  for (const auto& gr : groups)
+    for (const uint32_t f : gr) label[f] = kNone;
+  if (more || groups.size() != 2) return false;
   for (const auto& gr : groups)
     if (!extractPatch(g, mask, gr, false).isDisk()) return false;
   return true;
@@ -144,6 +144,7 @@ uint32_t improveCutJunctions(const EdgeGraph& g, Segmentation& seg, double scale
   std::vector<double> dist(g.vertexCount, INFINITY);
   std::vector<uint32_t> predEdge(g.vertexCount, kNone), seen;
   std::vector<uint8_t> changed(g.vertexCount, 0), forbidden(g.vertexCount, 0);
+  std::vector<uint32_t> faceLabel(g.faceCount, kNone);  // splitsIntoTwoDisks' scratch
   uint32_t total = 0;
   for (int pass = 0; pass < kPasses; ++pass) {
     std::fill(valence.begin(), valence.end(), 0);
@@ -285,7 +286,7 @@ uint32_t improveCutJunctions(const EdgeGraph& g, Segmentation& seg, double scale
             setKind(g.findEdge(newPath[i], newPath[i + 1]), EdgeKind::Cut);
             ++valence[newPath[i]], ++valence[newPath[i + 1]];
           }
-          commit = splitsIntoTwoDisks(g, seg, mask, seg.patches[A], seg.patches[B]);
+          commit = splitsIntoTwoDisks(g, seg, mask, A, B, faceLabel);
           if (!commit)  // A and B share another curve that this cut leaves on one side
             for (size_t i = 0; i + 1 < newPath.size(); ++i) {
               setKind(g.findEdge(newPath[i], newPath[i + 1]), EdgeKind::None);
