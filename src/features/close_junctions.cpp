@@ -18,39 +18,46 @@ struct KindChange {
 };
 
 // The faces of `patches` regrouped across the edges that are not curves now: as many groups as
-// patches, each a disk.
+// patches, each a disk. seen: per input face, 0 outside a call (a scratch the caller keeps, so that
+// a call costs the patches, not the mesh).
 bool sameDisks(const EdgeGraph& g, const Segmentation& seg, const std::vector<uint8_t>& mask,
-               const std::vector<uint32_t>& patches) {
-  std::vector<uint32_t> faces;
-  for (uint32_t p : patches) faces.insert(faces.end(), seg.patches[p].begin(), seg.patches[p].end());
-  std::sort(faces.begin(), faces.end());
-  const auto slot = [&](uint32_t f) {
-    auto it = std::lower_bound(faces.begin(), faces.end(), f);
-    return it != faces.end() && *it == f ? uint32_t(it - faces.begin()) : kNone;
-  };
-  std::vector<uint8_t> seen(faces.size(), 0);
-  std::vector<uint32_t> stack, group;
+               const std::vector<uint32_t>& patches, std::vector<uint8_t>& seen) {
+  const auto inPatches = [&](uint32_t f) { return std::find(patches.begin(), patches.end(), seg.facePatch[f]) != patches.end(); };
+  std::vector<uint32_t> stack, group, marked;
   size_t groups = 0;
-  for (uint32_t i0 = 0; i0 < faces.size(); ++i0) {
-    if (seen[i0]) continue;
-    if (++groups > patches.size()) return false;
-    seen[i0] = 1;
-    stack.assign(1, i0);
-    group.clear();
-    while (!stack.empty()) {
-      const uint32_t i = stack.back();
-      stack.pop_back();
-      group.push_back(faces[i]);
-      for (uint32_t e : g.faceEdges[faces[i]]) {
-        if (mask[e]) continue;
-        const uint32_t o = g.edgeFaces[e][0] == faces[i] ? g.edgeFaces[e][1] : g.edgeFaces[e][0];
-        const uint32_t j = o == kNone ? kNone : slot(o);
-        if (j != kNone && !seen[j]) seen[j] = 1, stack.push_back(j);
+  bool same = true;
+  for (size_t k = 0; k < patches.size() && same; ++k)
+    for (const uint32_t f0 : seg.patches[patches[k]]) {
+      if (seen[f0]) continue;
+      if (++groups > patches.size()) {
+        same = false;
+        break;
+      }
+      seen[f0] = 1;
+      marked.push_back(f0);
+      stack.assign(1, f0);
+      group.clear();
+      while (!stack.empty()) {
+        const uint32_t f = stack.back();
+        stack.pop_back();
+        group.push_back(f);
+        for (uint32_t e : g.faceEdges[f]) {
+          if (mask[e]) continue;
+          const uint32_t o = g.edgeFaces[e][0] == f ? g.edgeFaces[e][1] : g.edgeFaces[e][0];
+          if (o != kNone && !seen[o] && inPatches(o)) {
+            seen[o] = 1;
+            marked.push_back(o);
+            stack.push_back(o);
+          }
+        }
+      }
+      if (!extractPatch(g, mask, group, false).isDisk()) {
+        same = false;
+        break;
       }
     }
-    if (!extractPatch(g, mask, group, false).isDisk()) return false;
-  }
-  return groups == patches.size();
+  for (const uint32_t f : marked) seen[f] = 0;
+  return same && groups == patches.size();
 }
 
 }  // namespace
@@ -66,6 +73,7 @@ uint32_t mergeCloseJunctions(const EdgeGraph& g, Segmentation& seg, double minLe
   std::vector<double> dist(g.vertexCount, INFINITY);
   std::vector<uint32_t> predEdge(g.vertexCount, kNone), seen;
   std::vector<uint8_t> changed(g.vertexCount, 0);
+  std::vector<uint8_t> seenFace(g.faceCount, 0);  // sameDisks' scratch
   std::vector<KindChange> log;
   const auto setKind = [&](uint32_t e, EdgeKind kind) {
     log.push_back({e, seg.edgeKind[e]});
@@ -228,7 +236,7 @@ uint32_t mergeCloseJunctions(const EdgeGraph& g, Segmentation& seg, double minLe
             touched.erase(std::unique(touched.begin(), touched.end()), touched.end());
             for (uint32_t p : touched) ok = ok && !usedPatch[p];
           }
-          if (ok && (valence[X] == 0 || valence[X] == 2) && sameDisks(g, seg, mask, touched)) {
+          if (ok && (valence[X] == 0 || valence[X] == 2) && sameDisks(g, seg, mask, touched, seenFace)) {
             double now = INFINITY;
             for (uint32_t v : check) now = std::min(now, wedgeAt(v));
             if (valence[X] == 2) now = std::min(now, wedgeAt(X));
