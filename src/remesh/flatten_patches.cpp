@@ -49,7 +49,7 @@ constexpr double kConeGap = 0.25 * kPi;
 // asks for a split, spreads its scale past both kSinkScaleRatio and its parts' spread, or has a
 // spike tip sharper than its parts' (its cuts then come back, with its parts' flattenings). The
 // cuts the flattening makes (closing inner creases, sinks, spikes, splits) leave narrow parts
-// beside older cuts that only add border and junctions (man: 79 patches, 23 of them under 60
+// beside older cuts that only add border and junctions (man: 79 patches, 26 of them under 60
 // faces). The joined patches hold at most the input's faces together: one more flattening of the
 // input at most (docs/decisions/0050).
 constexpr double kJoinWidth = 3.0;
