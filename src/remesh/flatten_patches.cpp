@@ -156,7 +156,7 @@ std::vector<uint32_t> otherSinks(const PatchWork& w, double ratio) {
   return sinks;
 }
 
-// The spread of a flattened patch's scale (Flattening::scaleRatio).
+// The spread of a flattened patch's scale (max / min over its vertices: Flattening::scaleRatio).
 double spreadOf(const PatchWork& w) {
   const auto [lo, hi] = std::minmax_element(w.scaleSub.begin(), w.scaleSub.end());
   return w.scaleSub.empty() ? 1.0 : *hi / *lo;
@@ -306,14 +306,11 @@ double scaleAndSize(const Surface& surf, PatchWork& w) {
   }
   w.scaleSub.resize(nv);
   w.hSub.resize(nv);
-  double smin = INFINITY, smax = 0;
   for (size_t v = 0; v < nv; ++v) {
     w.scaleSub[v] = a3[v] > 0 ? std::sqrt(a2[v] / a3[v]) : 1.0;
     w.hSub[v] = surf.sizing.h[w.pm.vertexInput[v]];
-    smin = std::min(smin, w.scaleSub[v]);
-    smax = std::max(smax, w.scaleSub[v]);
   }
-  return smax / smin;
+  return spreadOf(w);
 }
 
 // Flattening f's scale spread measured, and whether it asks for a split.
@@ -578,7 +575,7 @@ Patches flattenPatches(Surface& surf, const RemeshOptions& opt, const Progress& 
       const std::vector<F::EdgeKind> before = surf.seg.edgeKind;
       const std::vector<uint32_t> partOf = surf.seg.facePatch;
       const std::vector<std::vector<uint32_t>> parts = surf.seg.patches;
-      if (const uint32_t n = F::mergeCutPatches(surf.g, surf.seg, kJoinWidth * surf.seg.junctionScale, {}, kept, true, joinFaces); n > 0) {
+      if (F::mergeCutPatches(surf.g, surf.seg, kJoinWidth * surf.seg.junctionScale, {}, kept, true, joinFaces) > 0) {
         F::rebuildCurves(surf.g, surf.seg);
         std::map<uint32_t, Join> made;  // by the joined patch
         for (uint32_t e = 0; e < before.size(); ++e)
