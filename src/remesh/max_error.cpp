@@ -78,9 +78,7 @@ RemeshResult remeshWithinError(const MeshBuffers& input, const RemeshOptions& op
     } else if (!o.coneTips && withoutConeTips == INFINITY) {
       // above the bound: first where the curvature bound is blind (a cone's tip the output cuts
       // off in proportion to its size: features/sizing.h), at the same tolerance; the tolerance
-      // is tightened everywhere only when that is not enough. ChineseDragon-10kv with inner
-      // creases: 391,626 triangles 0.211 (1.25 times the bound) at the first tolerance; with
-      // cone tips 524,450 at 0.123; tightened instead, 933,522 at 0.104.
+      // is tightened everywhere only when that is not enough (docs/decisions/0049).
       coneTips = true;
       withoutConeTips = distance;
       continue;
