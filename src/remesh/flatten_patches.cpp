@@ -379,9 +379,9 @@ Patches flattenPatches(Surface& surf, const RemeshOptions& opt, const Progress& 
     return sorted;
   };
   const std::vector<BoundaryCondition> order = conditionOrder(opt.boundary);
-  // Patches are flattened a window ahead of the patch order. A split ends the round, and the
-  // flattenings after it are mostly lost (the next round's extraction of a patch differs, if only
-  // in its face order): the window bounds that loss, one thread none, while 4 patches per thread
+  // Patches are flattened a window ahead of the patch order. A split ends the round; the
+  // flattenings after it serve the next round only where the split's repairs left the patch as it
+  // was (stillValid): the window bounds that loss, one thread none, while 4 patches per thread
   // are enough to balance them, unless one is as large as the others together (fandisk's largest
   // is about half of its flattening): the window then grows until its faces are `threads` times
   // its largest patch's.
@@ -433,11 +433,13 @@ Patches flattenPatches(Surface& surf, const RemeshOptions& opt, const Progress& 
     const auto mask = surf.seg.curveMask();
     // the patches not flattened yet, in patch order
     std::vector<uint32_t> todo;
+    std::vector<std::vector<uint32_t>> todoFaces;  // their faces, sorted (the key of cache and spare)
     std::vector<Flattening> made;
     for (uint32_t p = 0; p < surf.seg.patches.size(); ++p) {
       const auto& key = keyOf(surf.seg.patches[p]);
       if (cache.count(key)) continue;
       todo.push_back(p);
+      todoFaces.push_back(key);
       auto it = spare.find(key);
       made.emplace_back();
       if (it != spare.end() && stillValid(surf, mask, surf.seg.patches[p], it->second)) made.back() = std::move(it->second);
@@ -462,15 +464,11 @@ Patches flattenPatches(Surface& surf, const RemeshOptions& opt, const Progress& 
           [&](size_t done) { advance(double(before + done) / total); });
       // ... then taken in patch order, as a serial loop would: the first patch that is split ends
       // the round (the segmentation changes), and the flattenings after it are kept for the next
-      for (size_t i = from; i < to; ++i) {
+      for (size_t i = from; i < to && !split; ++i) {
         const uint32_t p = todo[i];
         // a copy: a split that is undone rebuilds seg.patches, which may have grown meanwhile
         const std::vector<uint32_t> faces = surf.seg.patches[p];
         Flattening& f = made[i];
-        if (split) {
-          spare.emplace(keyOf(faces), std::move(f));
-          continue;
-        }
         if (f.error) std::rethrow_exception(f.error);
         // a joined patch flattened worse than its parts: the join undone at the end of the round
         // (kJoinWidth), its parts' flattenings kept
@@ -555,6 +553,10 @@ Patches flattenPatches(Surface& surf, const RemeshOptions& opt, const Progress& 
         advance(double(cache.size()) / total);
       }
     }
+    // the flattenings a split left unused (this window's and those a spare gave later windows),
+    // by the faces they were made of: the patch numbers changed with the split
+    for (size_t i = 0; split && i < todo.size(); ++i)
+      if (made[i].w && !made[i].error) spare.emplace(todoFaces[i], std::move(made[i]));
     // a join is undone only where the round left its patch as it was (a split's repairs may
     // have rerouted a cut through it; the patch is then flattened again as it is)
     for (const auto& key : undo) {
