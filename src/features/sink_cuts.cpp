@@ -3,7 +3,6 @@
 #include <algorithm>
 #include <cmath>
 #include <queue>
-#include <unordered_map>
 #include <utility>
 #include <vector>
 
@@ -99,20 +98,41 @@ std::vector<uint32_t> pathToBorder(const EdgeGraph& g, const Segmentation& seg, 
     bool operator>(const Item& o) const { return d > o.d || (d == o.d && v > o.v); }
   };
   std::priority_queue<Item, std::vector<Item>, std::greater<Item>> pq;
-  std::unordered_map<uint32_t, std::pair<double, uint32_t>> best;  // vertex -> (distance, predecessor)
-  for (uint32_t v : avoid) best[v] = {-1.0, kNone};                // never entered
-  best[sink] = {0.0, kNone};
+  // vertex -> (distance, predecessor), for the vertices reached (avoided ones at -1: never
+  // entered); dense and kept by the thread, cleared over the vertices reached, as a search over
+  // a large patch runs several times per cut (a hash map was a third of a sink cut's time)
+  struct Reached {
+    std::vector<double> dist;
+    std::vector<uint32_t> pred;
+    std::vector<uint8_t> seen;
+    std::vector<uint32_t> list;
+    void set(uint32_t v, double d, uint32_t from) {
+      if (!seen[v]) seen[v] = 1, list.push_back(v);
+      dist[v] = d, pred[v] = from;
+    }
+  };
+  thread_local Reached best;
+  if (best.seen.size() < g.vertexCount) best.dist.resize(g.vertexCount), best.pred.resize(g.vertexCount), best.seen.resize(g.vertexCount, 0);
+  struct Clear {
+    Reached& r;
+    ~Clear() {
+      for (const uint32_t v : r.list) r.seen[v] = 0;
+      r.list.clear();
+    }
+  } clear{best};
+  for (uint32_t v : avoid) best.set(v, -1.0, kNone);
+  best.set(sink, 0.0, kNone);
   for (uint32_t w : firstSteps) {
     const uint32_t e = g.findEdge(sink, w);
-    if (e == kNone || best.count(w) || !allowed(e, w)) continue;
-    best[w] = {g.edgeLength(e), sink};
+    if (e == kNone || best.seen[w] || !allowed(e, w)) continue;
+    best.set(w, g.edgeLength(e), sink);
     pq.push({g.edgeLength(e), w});
   }
   uint32_t last = kNone;
   while (!pq.empty()) {
     const Item it = pq.top();
     pq.pop();
-    if (it.d > best[it.v].first) continue;
+    if (it.d > best.dist[it.v]) continue;
     if (isEnd(it.v)) {
       last = it.v;
       break;
@@ -122,14 +142,13 @@ std::vector<uint32_t> pathToBorder(const EdgeGraph& g, const Segmentation& seg, 
       const uint32_t w = g.otherVertex(e, it.v);
       if (!allowed(e, w)) continue;
       const double d = it.d + g.edgeLength(e);
-      auto found = best.find(w);
-      if (found != best.end() && !(d < found->second.first)) continue;
-      best[w] = {d, it.v};
+      if (best.seen[w] && !(d < best.dist[w])) continue;
+      best.set(w, d, it.v);
       pq.push({d, w});
     }
   }
   std::vector<uint32_t> path;
-  for (uint32_t v = last; v != kNone; v = v == sink ? kNone : best[v].second) path.push_back(v);
+  for (uint32_t v = last; v != kNone; v = v == sink ? kNone : best.pred[v]) path.push_back(v);
   std::reverse(path.begin(), path.end());
   return path;
 }
