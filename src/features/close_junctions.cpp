@@ -51,7 +51,7 @@ bool sameDisks(const EdgeGraph& g, const Segmentation& seg, const std::vector<ui
           }
         }
       }
-      if (!extractPatch(g, mask, group, false).isDisk()) {
+      if (!isDiskRegion(g, mask, group)) {
         same = false;
         break;
       }

@@ -63,7 +63,7 @@ bool splitsIntoTwoDisks(const EdgeGraph& g, const Segmentation& seg, const std::
     for (const uint32_t f : gr) label[f] = kNone;
   if (more || groups.size() != 2) return false;
   for (const auto& gr : groups)
-    if (!extractPatch(g, mask, gr, false).isDisk()) return false;
+    if (!isDiskRegion(g, mask, gr)) return false;
   return true;
 }
 
@@ -71,7 +71,7 @@ bool splitsIntoTwoDisks(const EdgeGraph& g, const Segmentation& seg, const std::
 bool patchesAreDisks(const EdgeGraph& g, const Segmentation& seg, const std::vector<uint32_t>& ids) {
   const std::vector<uint8_t> mask = seg.curveMask();
   for (const uint32_t p : ids)
-    if (!extractPatch(g, mask, seg.patches[p], false).isDisk()) return false;
+    if (!isDiskRegion(g, mask, seg.patches[p])) return false;
   return true;
 }
 

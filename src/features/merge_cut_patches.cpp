@@ -66,7 +66,7 @@ uint32_t mergeCutPatches(const EdgeGraph& g, Segmentation& seg, double maxWidth,
       for (size_t k = begin; k < end; ++k) mask[cuts[k].second] = 0, between += g.edgeLength(cuts[k].second);
       std::vector<uint32_t> joined = faces[p];
       joined.insert(joined.end(), faces[b].begin(), faces[b].end());
-      if (!extractPatch(g, mask, joined, true).isDisk()) {
+      if (!isDiskRegion(g, mask, joined)) {
         for (size_t k = begin; k < end; ++k) mask[cuts[k].second] = 1;
         continue;
       }

@@ -135,4 +135,46 @@ PatchMesh extractPatch(const EdgeGraph& g, const std::vector<uint8_t>& isCurve,
   return pm;
 }
 
+bool isDiskRegion(const EdgeGraph& g, const std::vector<uint8_t>& isCurve, const std::vector<uint32_t>& faces) {
+  if (faces.empty()) return false;
+  thread_local Slots inside;  // input face -> 1
+  thread_local Slots next;    // input vertex -> the head of its outgoing boundary halfedge
+  thread_local Slots vertex;  // input vertex of the region -> 1
+  inside.reserve(g.faceCount);
+  next.reserve(g.vertexCount);
+  vertex.reserve(g.vertexCount);
+  struct Clear {
+    ~Clear() { inside.clear(), next.clear(), vertex.clear(); }
+  } clear;
+  for (const uint32_t f : faces) inside.set(f, 1);
+  // Without a pinch each input vertex is one patch vertex, so χ = V − E + F over input vertices
+  // with E = (3F + B) / 2 (B boundary halfedges), and each border vertex has one outgoing
+  // boundary halfedge; a second one at a vertex is a second wedge there, a pinch (which the
+  // count and the walk below would reject too: the earliest exit).
+  size_t boundary = 0;
+  for (const uint32_t f : faces)
+    for (int c = 0; c < 3; ++c) {
+      const uint32_t a = g.faces[f][c];
+      vertex.set(a, 1);
+      const uint32_t e = g.faceEdges[f][c];
+      const uint32_t other = g.edgeFaces[e][0] == f ? g.edgeFaces[e][1] : g.edgeFaces[e][0];
+      if (!isCurve[e] && other != kNone && inside.at[other] != kNone) continue;
+      if (next.at[a] != kNone) return false;  // pinched
+      next.set(a, g.faces[f][(c + 1) % 3]);
+      ++boundary;
+    }
+  if (boundary == 0) return false;
+  const long F = long(faces.size()), V = long(vertex.used.size()), E = (3 * F + long(boundary)) / 2;
+  if (V - E + F != 1) return false;
+  // one boundary loop: the walk from one border vertex meets all of them
+  const uint32_t start = next.used.front();
+  size_t steps = 0;
+  uint32_t v = start;
+  do {
+    v = next.at[v];
+    if (v == kNone || ++steps > boundary) return false;
+  } while (v != start);
+  return steps == boundary;
+}
+
 }  // namespace conformesh::features

@@ -47,4 +47,8 @@ struct PatchMesh {
 PatchMesh extractPatch(const EdgeGraph& g, const std::vector<uint8_t>& isCurve,
                        const std::vector<uint32_t>& faces, bool traceLoops = true);
 
+//! extractPatch(g, isCurve, faces, false).isDisk() without building the patch: for the checks a
+//! cut or a join makes of the patches it would leave. O(faces).
+bool isDiskRegion(const EdgeGraph& g, const std::vector<uint8_t>& isCurve, const std::vector<uint32_t>& faces);
+
 }  // namespace conformesh::features

@@ -252,7 +252,7 @@ struct Cutter {
       cut = borders(region, label);
       for (uint32_t e : cut) mask[e] = 1;
       disk.clear();
-      for (const auto& p : parts) disk.push_back(extractPatch(g, mask, p, false).isDisk());
+      for (const auto& p : parts) disk.push_back(isDiskRegion(g, mask, p));
       if (std::count(disk.begin(), disk.end(), 1) == std::ptrdiff_t(parts.size()) || k == maxK) break;
       for (uint32_t e : cut) mask[e] = 0;
     }

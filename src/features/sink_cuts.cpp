@@ -180,7 +180,7 @@ bool applyCuts(const EdgeGraph& g, Segmentation& seg, uint32_t p, const std::vec
     for (uint32_t f : region) parts.push_back(seg.facePatch[f]);
     std::sort(parts.begin(), parts.end());
     parts.erase(std::unique(parts.begin(), parts.end()), parts.end());
-    for (uint32_t q : parts) ok = ok && extractPatch(g, mask, seg.patches[q], false).isDisk();
+    for (uint32_t q : parts) ok = ok && isDiskRegion(g, mask, seg.patches[q]);
   }
   if (!ok) {
     seg.edgeKind = before;

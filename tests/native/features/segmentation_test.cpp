@@ -1075,3 +1075,71 @@ TEST_CASE("sizing: coneTips bounds the size at a cone's tip by its slope; off, t
   CHECK(plain.h[tip] > 1.5 * cone.h[tip]);
   for (uint32_t v = 0; v < g.vertexCount; ++v) CHECK(cone.h[v] <= plain.h[v] * (1 + 1e-12));
 }
+
+TEST_CASE("features: isDiskRegion agrees with extractPatch on patches, unions of neighbours, grown regions and pinches") {
+  // regions of every kind: the remesh's patches of man and of a torus, each patch with each
+  // neighbour (across their cuts made plain, or kept), random regions grown from a face with
+  // random curve edges inside, and a region touching itself at one vertex
+  size_t disks = 0, others = 0;
+  const auto agree = [&](const EdgeGraph& g, const std::vector<uint8_t>& mask, const std::vector<uint32_t>& faces) {
+    const bool disk = extractPatch(g, mask, faces, false).isDisk();
+    CHECK(isDiskRegion(g, mask, faces) == disk);
+    ++(disk ? disks : others);
+  };
+  std::mt19937 rng(7);
+  for (const MeshBuffers& m : {testshapes::dataModel("man.off"), testshapes::torus(32, 12)}) {
+    const EdgeGraph g = buildEdgeGraph(m);
+    const Segmentation s = segment(g, testshapes::remeshFeatureOptions(g));
+    std::vector<uint8_t> mask = s.curveMask();
+    for (const auto& faces : s.patches) agree(g, mask, faces);
+    for (uint32_t e = 0; e < g.edgeCount(); ++e) {
+      const auto [f0, f1] = std::pair{g.edgeFaces[e][0], g.edgeFaces[e][1]};
+      if (f1 == kNone || s.facePatch[f0] >= s.facePatch[f1] || e % 7) continue;  // a sample of the pairs
+      std::vector<uint32_t> both = s.patches[s.facePatch[f0]];
+      both.insert(both.end(), s.patches[s.facePatch[f1]].begin(), s.patches[s.facePatch[f1]].end());
+      agree(g, mask, both);
+      std::vector<uint8_t> plain = mask;
+      for (uint32_t d = 0; d < g.edgeCount(); ++d)
+        if (g.edgeFaces[d][1] != kNone && std::minmax(s.facePatch[g.edgeFaces[d][0]], s.facePatch[g.edgeFaces[d][1]]) == std::minmax(s.facePatch[f0], s.facePatch[f1]))
+          plain[d] = 0;
+      agree(g, plain, both);
+    }
+    for (int trial = 0; trial < 200; ++trial) {
+      std::vector<uint8_t> in(g.faceCount, 0), curve(g.edgeCount(), 0);
+      for (uint32_t e = 0; e < g.edgeCount(); ++e) curve[e] = rng() % 50 == 0;
+      std::vector<uint32_t> region{uint32_t(rng() % g.faceCount)};
+      in[region[0]] = 1;
+      const size_t size = 1 + rng() % 400;
+      for (size_t k = 0; k < region.size() && region.size() < size; ++k)
+        for (const uint32_t e : g.faceEdges[region[k]])
+          for (const uint32_t f : g.edgeFaces[e])
+            if (f != kNone && !in[f] && rng() % 4 != 0) in[f] = 1, region.push_back(f);
+      agree(g, curve, region);
+    }
+  }
+  {  // a torus but one face: one border loop and no pinch, but a handle
+    const EdgeGraph g = buildEdgeGraph(testshapes::torus(16, 8));
+    std::vector<uint32_t> most;
+    for (uint32_t f = 1; f < g.faceCount; ++f) most.push_back(f);
+    agree(g, std::vector<uint8_t>(g.edgeCount(), 0), most);
+    CHECK_FALSE(isDiskRegion(g, std::vector<uint8_t>(g.edgeCount(), 0), most));
+  }
+  {  // two triangles of a square grid sharing one vertex only: a pinch
+    const EdgeGraph g = buildEdgeGraph(testshapes::square(4));
+    std::vector<uint32_t> fan;
+    for (uint32_t f = 0; f < g.faceCount && fan.size() < 2; ++f)
+      for (int c = 0; c < 3; ++c)
+        if (g.faces[f][c] == 12 && (fan.empty() || g.faces[fan[0]][0] != g.faces[f][0])) {
+          bool sharesEdge = false;
+          for (const uint32_t h : fan)
+            for (const uint32_t e : g.faceEdges[f]) sharesEdge |= g.edgeFaces[e][0] == h || g.edgeFaces[e][1] == h;
+          if (!sharesEdge) fan.push_back(f);
+          break;
+        }
+    REQUIRE(fan.size() == 2);
+    agree(g, std::vector<uint8_t>(g.edgeCount(), 0), fan);
+    CHECK_FALSE(isDiskRegion(g, std::vector<uint8_t>(g.edgeCount(), 0), fan));
+  }
+  CHECK(disks > 100);  // both answers were asked for
+  CHECK(others > 100);
+}
