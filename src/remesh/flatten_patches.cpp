@@ -196,6 +196,13 @@ FarFromFlat farFromFlat(const F::PatchMesh& pm) {
   return far;
 }
 
+// Whether more than half of `faces` are marked.
+bool mostlyMarked(const std::vector<uint32_t>& faces, const std::vector<uint8_t>& mark) {
+  size_t n = 0;
+  for (const uint32_t f : faces) n += mark[f];
+  return 2 * n > faces.size();
+}
+
 // A hash of which input edges are curves of which kind (FNV-1a).
 uint64_t curveStateHash(const F::Segmentation& seg) {
   uint64_t h = 1469598103934665603ull;
@@ -413,6 +420,8 @@ Patches flattenPatches(Surface& surf, const RemeshOptions& opt, const Progress& 
   // an interior vertex whose angle sum is below this is a spike tip (kSpikeTipFan)
   const double spikeAngle = kSpikeTipFan * opt.minAngle * kPi / 180;
   std::set<uint64_t> lateral;  // segmentations left by splits that made no more patches
+  // per input face: in a patch cut through a vertex far from flat because its layout overlapped
+  std::vector<uint8_t> overlapCut(surf.g.faceCount, 0);
   int joinRounds = 0;  // of joining narrow patches (kJoinWidth)
   // the faces the joined patches may still hold: each is flattened again, and together they cost
   // at most one more flattening of the whole input
@@ -489,16 +498,23 @@ Patches flattenPatches(Surface& surf, const RemeshOptions& opt, const Progress& 
           continue;
         }
         // a failed flattening: cut through a vertex too far from flat (kConeGap) before splitting
-        // around it
+        // around it; but a layout that still overlaps itself after such a cut in the patch it came
+        // from is split at its crossing: the cut did not remove the overlap, and the next vertex
+        // far from flat would not either (armadillo: five such cuts in turn, each shaving 20–240
+        // faces off a patch of 10,318 that overlapped itself after each)
+        const bool overlaps = !f.splitSeeds.empty();
         const FarFromFlat far = f.splitAsked || !f.flattened ? farFromFlat(f.w->pm) : FarFromFlat{};
-        if ((f.splitAsked || !f.flattened) &&
+        if ((f.splitAsked || !f.flattened) && !(overlaps && mostlyMarked(faces, overlapCut)) &&
             (F::cutThroughWideCorner(surf.g, surf.seg, p, far.widestCorner, minWedge) ||
              F::cutThroughSink(surf.g, surf.seg, p, far.sharpestCone, minWedge))) {
+          if (overlaps)
+            for (const uint32_t t : faces) overlapCut[t] = 1;
           ++rep.patchSplitsForScale;
           rep.warnings.push_back("patch cut through a vertex far from flat after: " + f.lastError);
           split = true;
           continue;
         }
+        for (const uint32_t t : faces) overlapCut[t] = 0;  // its parts may try a cut again
         if (f.splitAsked) {
           if (splitOnce(surf, p, lateral, f.splitSeeds)) {
             ++rep.patchSplitsForScale;
