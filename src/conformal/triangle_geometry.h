@@ -43,9 +43,10 @@ inline double kahanAngle(double c, double a, double b, bool& valid) {
 //! normalized by the longest). Returns false when the triangle inequality fails.
 inline bool anglesFromLogLengths(const double lam[3], double angle[3]) {
   const double m = std::max(lam[0], std::max(lam[1], lam[2]));
-  const double l0 = dmath::exp(0.5 * (lam[0] - m));
-  const double l1 = dmath::exp(0.5 * (lam[1] - m));
-  const double l2 = dmath::exp(0.5 * (lam[2] - m));
+  // the longest is 1 (what exp(0) gives) without its exp: the flow calls this per face per step
+  const double l0 = lam[0] == m ? 1.0 : dmath::exp(0.5 * (lam[0] - m));
+  const double l1 = lam[1] == m ? 1.0 : dmath::exp(0.5 * (lam[1] - m));
+  const double l2 = lam[2] == m ? 1.0 : dmath::exp(0.5 * (lam[2] - m));
   bool valid = true;
   angle[0] = kahanAngle(l0, l1, l2, valid);
   angle[1] = kahanAngle(l1, l2, l0, valid);
