@@ -12,10 +12,13 @@ namespace {
 // The 3D angle at p of the triangle (p, q, r), in degrees.
 double angleAt(const Vec3& p, const Vec3& q, const Vec3& r) { return features::angleBetween(q - p, r - p) * (180.0 / kPi); }
 
-size_t countBelow(const std::vector<uint32_t>& tri, const std::vector<Vec3>& pos, double bound) {
+// `approx`: the optimizer's min angles (minAngleDeg3Approx, within 1e-4° of the exact ones) when
+// there is one per triangle: only the triangles it puts near or below the bound are measured.
+size_t countBelow(const std::vector<uint32_t>& tri, const std::vector<Vec3>& pos, double bound, const std::vector<double>& approx) {
+  const bool screen = approx.size() == tri.size() / 3;
   size_t n = 0;
   for (size_t t = 0; t < tri.size() / 3; ++t)
-    n += minAngleDeg3(pos[tri[3 * t]], pos[tri[3 * t + 1]], pos[tri[3 * t + 2]]) < bound;
+    if (!screen || !(approx[t] >= bound + 1e-3)) n += minAngleDeg3(pos[tri[3 * t]], pos[tri[3 * t + 1]], pos[tri[3 * t + 2]]) < bound;
   return n;
 }
 
@@ -37,6 +40,36 @@ bool findEdge(const std::vector<uint32_t>& tri, uint32_t a, uint32_t b, size_t& 
   return false;
 }
 
+// The optimizer's cache (optimize.h) after the split of the edge shared by triangles ta (with the
+// directed edge a -> b at its corner ca) and tu (b -> a at cu) at the new vertex m, ta and tu
+// rewritten as (a, m, x) and (b, m, d) and (m, b, x), (m, a, d) appended: the adjacency patched
+// around them, the new triangles' slots added (their min angles and guard points are recomputed
+// by the optimization, every vertex of theirs being active), the stars left stale.
+void splitCache(OptimizeCache& c, const std::vector<uint32_t>& tri0, size_t ta, int ca, size_t tu, int cu) {
+  constexpr uint32_t none = 0xffffffffu;  // optimize.cpp's kNoTri
+  const uint32_t nA = uint32_t(tri0.size() / 3), nB = nA + 1;
+  const uint32_t bx = c.adjacency[3 * ta + (ca + 1) % 3], xa = c.adjacency[3 * ta + (ca + 2) % 3];
+  const uint32_t ad = c.adjacency[3 * tu + (cu + 1) % 3], db = c.adjacency[3 * tu + (cu + 2) % 3];
+  c.adjacency.resize(3 * size_t(nB + 1));
+  const auto set = [&](size_t t, uint32_t s0, uint32_t s1, uint32_t s2) {
+    c.adjacency[3 * t] = s0, c.adjacency[3 * t + 1] = s1, c.adjacency[3 * t + 2] = s2;
+  };
+  set(ta, nB, nA, xa);                 // (a, m, x)
+  set(tu, nA, nB, db);                 // (b, m, d)
+  set(nA, uint32_t(tu), bx, uint32_t(ta));  // (m, b, x)
+  set(nB, uint32_t(ta), ad, uint32_t(tu));  // (m, a, d)
+  const auto repoint = [&](uint32_t t, uint32_t from, uint32_t to) {
+    if (t == none) return;
+    for (int k = 0; k < 3; ++k)
+      if (c.adjacency[3 * size_t(t) + k] == from) c.adjacency[3 * size_t(t) + k] = to;
+  };
+  repoint(bx, uint32_t(ta), nA);
+  repoint(ad, uint32_t(tu), nB);
+  c.minAngle.resize(nB + 1, 0.0);
+  c.starStart.clear(), c.starTri.clear();
+  if (!c.guardHead.empty()) c.guardHead.resize(nB + 1, none), c.guardErr.resize(nB + 1, 0.0);
+}
+
 }  // namespace
 
 SplitStats splitBelowBound(std::vector<double>& xy, std::vector<uint32_t>& triangles, std::vector<Vec3>& pos,
@@ -47,6 +80,10 @@ SplitStats splitBelowBound(std::vector<double>& xy, std::vector<uint32_t>& trian
   size_t below = 0;  // triangles below the bound in the patch
   OptimizeOptions local = o;
   local.boundPasses = std::max(o.boundPasses, so.boundPasses);
+  // what each optimization leaves for the next (optimize.h): a try would otherwise bucket the
+  // guard's points and build the adjacency over the whole patch (ChineseDragon-10kv at 35°: a
+  // fifth of the run in the guard's bucketing alone)
+  OptimizeCache cache;
   // a pass over the triangles below the bound, again while one keeps a split (a kept split's
   // optimization flips and moves around it: the triangles there are new)
   for (bool again = true; again && !st.capped;) {
@@ -92,6 +129,7 @@ SplitStats splitBelowBound(std::vector<double>& xy, std::vector<uint32_t>& trian
         const std::vector<double> xy0 = xy;
         const std::vector<uint32_t> tri0 = triangles;
         const std::vector<Vec3> pos0 = pos;
+        const OptimizeCache cache0 = cache;
         xy.insert(xy.end(), {mx, my});
         pos.push_back(P);
         fixed.push_back(0);
@@ -108,8 +146,9 @@ SplitStats splitBelowBound(std::vector<double>& xy, std::vector<uint32_t>& trian
           if (active[w[0]] == 2 || active[w[1]] == 2 || active[w[2]] == 2)
             for (int j = 0; j < 3; ++j) active[w[j]] = std::max<uint8_t>(active[w[j]], 1);
         }
-        const OptimizeStats os = optimizePatch(xy, triangles, pos, fixed, lift, local, active, guard, nullptr);
-        const size_t now = countBelow(triangles, pos, bound);
+        if (cache.adjacency.size() == tri0.size()) splitCache(cache, tri0, ta, ca, tu, cu);
+        const OptimizeStats os = optimizePatch(xy, triangles, pos, fixed, lift, local, active, guard, &cache);
+        const size_t now = countBelow(triangles, pos, bound, cache.minAngle);
         if (now < below) {
           below = now;
           ++st.splits;
@@ -122,6 +161,7 @@ SplitStats splitBelowBound(std::vector<double>& xy, std::vector<uint32_t>& trian
         xy = xy0;
         triangles = tri0;
         pos = pos0;
+        cache = cache0;
         fixed.pop_back();
       }
       if (st.capped) break;
