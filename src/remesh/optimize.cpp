@@ -581,7 +581,7 @@ size_t flipPass(Mesh& m, std::vector<uint8_t>& touched, const std::vector<uint8_
 // the number of collapses; `touched` gets the changed stars' vertices.
 size_t collapsePass(Mesh& m, std::vector<uint8_t>& touched, const std::vector<uint8_t>& region, double floor) {
   const size_t nt = m.tri.size() / 3, nv = m.xy.size() / 2;
-  std::vector<uint8_t> locked(nv, 0), dead(nt, 0);
+  std::vector<uint8_t> locked(nv, 0), dead(nt, 0), reshaped(nt, 0);  // reshaped: took w for u
   std::vector<uint32_t> nu, nw, keep;
   auto neighbours = [&](uint32_t v, std::vector<uint32_t>& out) {
     out.clear();
@@ -650,6 +650,7 @@ size_t collapsePass(Mesh& m, std::vector<uint8_t>& touched, const std::vector<ui
           continue;
         }
         dead[t0] = dead[t1] = 1;
+        for (const uint32_t t : keep) reshaped[t] = 1;
         m.deg[w] += m.deg[u] - 4;
         --m.deg[c0], --m.deg[c1];
         m.deg[u] = 0;
@@ -662,17 +663,32 @@ size_t collapsePass(Mesh& m, std::vector<uint8_t>& touched, const std::vector<ui
     }
   }
   if (count == 0) return 0;
+  std::vector<uint32_t> renumbered(nt, kNoTri);
   size_t out = 0;
   for (size_t t = 0; t < nt; ++t) {
     if (dead[t]) continue;
     for (int i = 0; i < 3; ++i) m.tri[3 * out + i] = m.tri[3 * t + i];
-    ++out;
+    renumbered[t] = uint32_t(out++);
   }
   m.tri.resize(3 * out);
   m.cacheAll();
   m.buildStars();
   buildAdjacency(m);
-  if (m.guard) bucketGuard(m);
+  if (m.guard) {
+    // the buckets of the triangles left, renumbered; the points of the dead ones and of those
+    // that took w for u sorted again into the latter (they cover u's old star), not every point
+    // into every triangle
+    std::vector<uint32_t> head(out, kNoTri), changed;
+    std::vector<double> err(out, 0.0);
+    for (size_t t = 0; t < nt; ++t)
+      if (const uint32_t n = renumbered[t]; n != kNoTri) {
+        head[n] = m.head[t], err[n] = m.err[t];
+        if (reshaped[t]) changed.push_back(n);
+      }
+    m.head.swap(head);
+    m.err.swap(err);
+    rebucketGuard(m, changed);
+  }
   return count;
 }
 
