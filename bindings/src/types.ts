@@ -340,7 +340,7 @@ export interface RemeshOptions {
   /**
    * Hold the chord tolerance at cone tips too (a vertex whose neighbours lie far off its tangent
    * plane: the output cuts such a tip off in proportion to the size, not its square). Default
-   * false; error-driven remeshing turns it on for its next attempt when one exceeds the bound.
+   * false (error-driven remeshing cuts the sizes where an attempt exceeded its bound instead).
    */
   coneTips?: boolean;
   /**

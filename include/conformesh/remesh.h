@@ -21,7 +21,9 @@ struct RemeshOptions {
 #define CONFORMESH_X(type, name, fallback, lo, hi, flag, value, help) type name = fallback;
   CONFORMESH_REMESH_OPTIONS(CONFORMESH_X)
 #undef CONFORMESH_X
-  //! Optional per-input-vertex target edge length (absolute), one per input vertex.
+  //! Optional per-input-vertex target edge length (absolute), one per input vertex. Error-driven
+  //! (maxError) without minEdgeLength, honoured below the default minimum: the search cuts the
+  //! sizes through it where an attempt was too far from the input.
   std::vector<double> vertexSizing;
   //! User feature edges (input vertex pairs); always kept as feature curves.
   std::vector<std::array<uint32_t, 2>> featureEdges;

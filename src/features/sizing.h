@@ -36,8 +36,7 @@ struct SizingOptions {
   //! spans it, which cuts it off by about s times its distance to the output's nearest vertex: a
   //! linear error, where the curvature bound models a quadratic one. h ≤ √3·tol / s there (an
   //! output vertex within the circumradius h/√3 of the tip). Tighter than the curvature bound only
-  //! where a neighbour lies more than 3/4 tol off the plane. Error-driven remeshing turns it on when
-  //! an attempt exceeds its bound: a cut-off tip would otherwise tighten the tolerance everywhere.
+  //! where a neighbour lies more than 3/4 tol off the plane.
   bool coneTips = false;
   //! Vertices from this index on are points that halve an edge of the mesh the graph was made
   //! from: a curve's turn at a vertex is measured to the nearest vertices along it below this

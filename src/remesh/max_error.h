@@ -2,10 +2,11 @@
 // constraint (RemeshOptions::maxError), not the edge length. The setting of Hu, Yan, Bommes,
 // Alliez and Benes, "Error-bounded and feature preserving surface remeshing with minimal angle
 // improvement" (IEEE TVCG 2017), reached here by the curvature sizing's chord tolerance: the
-// whole remesh runs with a tolerance below the bound, its measured Hausdorff distance decides
-// whether the tolerance is tightened (the distance was above the bound; first the cone tips'
-// sizes alone, RemeshOptions::coneTips) or loosened (far below it: a coarser mesh would do), a
-// few times at most.
+// whole remesh runs with a tolerance below the bound, and its measured Hausdorff distance decides
+// the next attempt, a few at most: above the bound, the sizes are cut where the distance was
+// exceeded (RemeshOptions::vertexSizing, at the same tolerance), or the tolerance is tightened
+// when no sample shows where or a cut did not lower the distance; far below it, the tolerance is
+// loosened (a coarser mesh would do).
 #pragma once
 
 #include <functional>

@@ -147,6 +147,11 @@ Surface prepareSurface(ValidatedMesh vm, const MeshBuffers& input, const RemeshO
     so.maxEdgeLength = opt.maxEdgeLength > 0 ? opt.maxEdgeLength : so.targetEdgeLength;
     splitFloor = opt.minEdgeLength > 0 ? opt.minEdgeLength : 0.1 * target;
     so.minEdgeLength = opt.minEdgeLength > 0 ? opt.minEdgeLength : std::min(splitFloor, opt.chordTolerance > 0 ? opt.chordTolerance : INFINITY);
+    // the sizes given per vertex are honoured down to the sizing's own floor: the error-driven
+    // search cuts them where an attempt was too far (a spike's tip may need edges below the
+    // tolerance)
+    if (opt.minEdgeLength <= 0 && !opt.vertexSizing.empty())
+      so.minEdgeLength = std::min(so.minEdgeLength, *std::min_element(opt.vertexSizing.begin(), opt.vertexSizing.end()));
   }
   so.surfaceKappa = std::move(surfaceKappa);
   if (surf.pre.splits > 0) so.firstSplitVertex = uint32_t(in.vertexCount());
