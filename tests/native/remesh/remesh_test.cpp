@@ -171,23 +171,29 @@ TEST_CASE("remesh: a corner wedge two patches close alike is opened (camel, feat
   checkRemesh(rr.mesh, o, "camel.off at 30 degrees", false, false);
 }
 
-// ALSTOM_TEST4 (coarse CAD) at 0.05 and 35° takes two certificate rounds; capped at one, the
-// repair lifts what the second would have: every stage of the table runs, in its order.
+// ALSTOM_TEST4 (coarse CAD) at 35° takes two certificate rounds at some targets; capped at one,
+// the repair lifts what the second would have: every stage of the table runs, in its order. Which
+// targets do depends on the whole pipeline: the first that does is checked, and one must.
 TEST_CASE("remesh: progress comes in the stage table's order, and the report times every stage") {
   ReadResult rr = readMesh(test::readFile(std::string(CONFORMESH_DATA_DIR) + "/ALSTOM_TEST4.off"));
   RemeshOptions o;
-  o.targetEdgeLengthRel = 0.05;
   o.minAngle = 35;
   o.maxCertificateRounds = 1;
   o.computeHausdorff = false;
   std::vector<Stage> reported;
-  RemeshResult r = remesh(rr.mesh, o, [&](Stage s, double f) {
-    CHECK(f >= 0);
-    CHECK(f <= 1);
-    if (reported.empty() || reported.back() != s) reported.push_back(s);
-    return true;
-  });
-  REQUIRE(r.status.ok());
+  RemeshResult r;
+  for (const double target : {0.05, 0.03, 0.02, 0.04}) {
+    o.targetEdgeLengthRel = target;
+    reported.clear();
+    r = remesh(rr.mesh, o, [&](Stage s, double f) {
+      CHECK(f >= 0);
+      CHECK(f <= 1);
+      if (reported.empty() || reported.back() != s) reported.push_back(s);
+      return true;
+    });
+    REQUIRE(r.status.ok());
+    if (r.report.certificateRounds > 0 && r.report.repairMoves > 0) break;
+  }
   REQUIRE(r.report.certificateRounds > 0);
   REQUIRE(r.report.repairMoves > 0);
   for (size_t i = 1; i < reported.size(); ++i) CHECK(int(reported[i - 1]) < int(reported[i]));
