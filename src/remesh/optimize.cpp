@@ -19,7 +19,7 @@ namespace {
 inline double sq(double x) { return x * x; }
 
 constexpr double kRadToDeg = 57.295779513082320876798;
-constexpr uint32_t kNoTri = 0xffffffffu;
+constexpr uint32_t kNoTri = kNoTriangle;
 
 using planar::orient2d;
 

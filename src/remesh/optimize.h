@@ -77,6 +77,9 @@ struct SurfaceSamples {
   double tolerance = 0;  //!< 3D length
 };
 
+//! In OptimizeCache's adjacency and guard lists: no triangle (a border side, the end of a list).
+constexpr uint32_t kNoTriangle = 0xffffffffu;
+
 //! Optimize in place. xy: 2 per vertex (planar); triangles: 3 per triangle, counter-clockwise
 //! in the plane; pos: 3D position per vertex (pos[v] must be the lift of xy[v]); fixed[v]: the
 //! vertex does not move. Edges used by one triangle only are boundary edges and never flip.

@@ -46,7 +46,7 @@ bool findEdge(const std::vector<uint32_t>& tri, uint32_t a, uint32_t b, size_t& 
 // around them, the new triangles' slots added (their min angles and guard points are recomputed
 // by the optimization, every vertex of theirs being active), the stars left stale.
 void splitCache(OptimizeCache& c, const std::vector<uint32_t>& tri0, size_t ta, int ca, size_t tu, int cu) {
-  constexpr uint32_t none = 0xffffffffu;  // optimize.cpp's kNoTri
+  constexpr uint32_t none = kNoTriangle;
   const uint32_t nA = uint32_t(tri0.size() / 3), nB = nA + 1;
   const uint32_t bx = c.adjacency[3 * ta + (ca + 1) % 3], xa = c.adjacency[3 * ta + (ca + 2) % 3];
   const uint32_t ad = c.adjacency[3 * tu + (cu + 1) % 3], db = c.adjacency[3 * tu + (cu + 2) % 3];
