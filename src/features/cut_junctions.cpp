@@ -27,6 +27,19 @@ Vec3 pointAlong(const EdgeGraph& g, const std::vector<uint32_t>& path, double le
   return g.positions[path.back()];
 }
 
+// The angle at which a cut (vertex path `cut`) meets another curve (`other`) at their common first
+// vertex: the angle between their directions at the junction scale (dCut, dOther), or between
+// their first edges where that is narrower than kNarrowCutWedge. A cut can arrive at the scale's
+// angle through an input edge that leaves the curve at a few degrees (across a sliver): the patch
+// between them then has that corner, and the refinement's segment splits crowd into it.
+double endAngle(const EdgeGraph& g, const std::vector<uint32_t>& cut, const std::vector<uint32_t>& other, const Vec3& dCut,
+                const Vec3& dOther) {
+  const double scaleAngle = angleBetween(dCut, dOther);
+  const Vec3& x = g.positions[cut[0]];
+  const double edgeAngle = angleBetween(g.positions[cut[1]] - x, g.positions[other[1]] - x);
+  return edgeAngle < kNarrowCutWedge ? std::min(scaleAngle, edgeAngle) : scaleAngle;
+}
+
 // The faces of patches A and B (as the last rebuild numbered them) regrouped across the edges that
 // are not curves now: exactly two groups, each a disk. label: per input face, kNone outside a call
 // (a scratch the caller keeps, so that a call costs the two patches, not the mesh).
@@ -186,7 +199,7 @@ uint32_t improveCutJunctions(const EdgeGraph& g, Segmentation& seg, double scale
         for (auto [cj, ej] : ends[v]) {
           if (cj == ci && ej == end) continue;
           std::vector<uint32_t> other = fromEnd(cj, ej);
-          old = std::min(old, angleBetween(d0, pointAlong(g, other, l) - g.positions[v]));
+          old = std::min(old, endAngle(g, path, other, d0, pointAlong(g, other, l) - g.positions[v]));
         }
         if (old >= kAim) continue;
         // u: the cut's vertex about 3·l from the end (never its far end)
@@ -266,7 +279,7 @@ uint32_t improveCutJunctions(const EdgeGraph& g, Segmentation& seg, double scale
           std::reverse(back.begin(), back.end());
           double now = kPi;
           for (const auto* side : {&fwd, &back})
-            if (side->size() > 1) now = std::min(now, angleBetween(dn, pointAlong(g, *side, l) - g.positions[x]));
+            if (side->size() > 1) now = std::min(now, endAngle(g, cutPath, *side, dn, pointAlong(g, *side, l) - g.positions[x]));
           if (now > old + kGain) ranked.push_back({now, x});
         }
         // landings were found nearest first: those at kAim or more keep that order (the nearest

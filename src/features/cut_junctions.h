@@ -12,10 +12,12 @@ namespace conformesh::features {
 
 //! Cuts are ours, so where one meets another curve at a small angle (a Voronoi border arriving
 //! obliquely, three borders meeting at a point), the patch on the narrow side would have a small
-//! corner that no mesh can fix. Reroute such a cut end: from the cut's vertex about 3·scale
-//! before the end, the shortest path of input edges to a smooth point of another curve (a
-//! shortest path to a curve meets it at a right angle); kept only when the angle gets better and
-//! every patch stays a disk. Rebuilds the curves. Returns the number of ends rerouted.
+//! corner that no mesh can fix. The angle is taken at about `scale` from the junction, or
+//! between the first input edges where those meet at less than 45° (a cut crossing a sliver face
+//! at a right angle on the whole can leave the curve there at a few degrees). Reroute such a cut
+//! end: from the cut's vertex about 3·scale before the end, the shortest path of input edges to
+//! a smooth point of another curve (a shortest path to a curve meets it at a right angle); kept
+//! only when the angle gets better and every patch stays a disk. Rebuilds the curves. Returns the number of ends rerouted.
 //! `region` (input faces; empty: all): only cuts beside it are rerouted (splitPatch passes the
 //! split patch, so a split does not retry every cut end of the mesh).
 uint32_t improveCutJunctions(const EdgeGraph& g, Segmentation& seg, double scale, const std::vector<uint32_t>& region = {});

@@ -312,6 +312,69 @@ TEST_CASE("features: improveCutJunctions opens up cuts that meet other curves at
   CHECK(s1.reroutedCutEnds > 0);
 }
 
+TEST_CASE("features: improveCutJunctions reroutes a cut whose last input edge leaves the curve at a few degrees (a sliver face)") {
+  // [0, 1]² as a grid of n × n squares (diagonals of slope 1), a feature along y = 1/2, and a
+  // vertex S inserted in the face above the feature at V = (1/2, 1/2): the edge V - S leaves the
+  // feature at 4.8°. The cut comes down x = 1/2 + h from the top side to (1/2 + h, 1/2 + h), then
+  // to S and V: at the junction scale it meets the feature at about 70°, through its last edge at
+  // 4.8° (the patch beside it has that corner, which no mesh can fix).
+  const int n = 20;
+  const double h = 1.0 / n;
+  MeshBuffers m;
+  for (int j = 0; j <= n; ++j)
+    for (int i = 0; i <= n; ++i) m.positions.insert(m.positions.end(), {i * h, j * h, 0.0});
+  const auto id = [&](int i, int j) { return uint32_t(j * (n + 1) + i); };
+  const uint32_t S = uint32_t(m.positions.size() / 3);
+  m.positions.insert(m.positions.end(), {0.5 + 0.6 * h, 0.5 + 0.05 * h, 0.0});
+  for (int j = 0; j < n; ++j)
+    for (int i = 0; i < n; ++i) {
+      const uint32_t a = id(i, j), b = id(i + 1, j), c = id(i + 1, j + 1), d = id(i, j + 1);
+      if (i == n / 2 && j == n / 2)
+        m.triangles.insert(m.triangles.end(), {a, b, S, b, c, S, c, a, S});
+      else
+        m.triangles.insert(m.triangles.end(), {a, b, c});
+      m.triangles.insert(m.triangles.end(), {a, c, d});
+    }
+  const EdgeGraph g = buildEdgeGraph(m);
+  const uint32_t V = id(n / 2, n / 2);
+  Segmentation s = segment(g, FeatureOptions{});
+  REQUIRE(s.patches.size() == 1);
+  const auto mark = [&](uint32_t a, uint32_t b, EdgeKind kind) {
+    const uint32_t e = g.findEdge(a, b);
+    REQUIRE(e != kNone);
+    s.edgeKind[e] = kind;
+  };
+  for (int i = 0; i < n; ++i) mark(id(i, n / 2), id(i + 1, n / 2), EdgeKind::Feature);
+  for (int j = n / 2 + 1; j < n; ++j) mark(id(n / 2 + 1, j), id(n / 2 + 1, j + 1), EdgeKind::Cut);
+  mark(id(n / 2 + 1, n / 2 + 1), S, EdgeKind::Cut);
+  mark(S, V, EdgeKind::Cut);
+  rebuildCurves(g, s);
+  REQUIRE(s.patches.size() == 3);
+  checkPatchesAreDisks(g, s);
+  // the smallest angle between a cut edge and a feature edge at a vertex they share
+  const auto narrowest = [&](const Segmentation& t) {
+    double least = kPi;
+    for (uint32_t v = 0; v < g.vertexCount; ++v)
+      for (uint32_t k = g.vertexEdgeStart[v]; k < g.vertexEdgeStart[v + 1]; ++k)
+        for (uint32_t q = g.vertexEdgeStart[v]; q < g.vertexEdgeStart[v + 1]; ++q) {
+          const uint32_t a = g.vertexEdgeIds[k], b = g.vertexEdgeIds[q];
+          if (t.edgeKind[a] != EdgeKind::Cut || t.edgeKind[b] != EdgeKind::Feature) continue;
+          least = std::min(least, angleBetween(g.positions[g.otherVertex(a, v)] - g.positions[v], g.positions[g.otherVertex(b, v)] - g.positions[v]));
+        }
+    return least;
+  };
+  REQUIRE(narrowest(s) < 5 * kPi / 180);
+  const std::vector<EdgeKind> before = s.edgeKind;
+  CHECK(improveCutJunctions(g, s, 4 * h) >= 1);
+  MESSAGE("narrowest cut-feature angle after: " << narrowest(s) * 180 / kPi << " deg");
+  CHECK(narrowest(s) >= kNarrowCutWedge);
+  CHECK(s.edgeKind[g.findEdge(S, V)] == EdgeKind::None);
+  for (uint32_t e = 0; e < g.edgeCount(); ++e)  // the feature and the boundary stay as they were
+    if (before[e] == EdgeKind::Feature || before[e] == EdgeKind::Boundary) CHECK(s.edgeKind[e] == before[e]);
+  CHECK(s.patches.size() == 3);
+  checkPatchesAreDisks(g, s);
+}
+
 TEST_CASE("features: minFeatureLength keeps a network of short strong creases and user feature edges") {
   EdgeGraph g = buildEdgeGraph(testshapes::cube(4));  // 12 creases of length 1, flat around
   FeatureOptions keep;
