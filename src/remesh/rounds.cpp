@@ -77,22 +77,14 @@ BestRound meshRounds(const Surface& surf, const RemeshOptions& opt, const Progre
   size_t bestBad = SIZE_MAX, bestCollapsed = SIZE_MAX, bestDoubled = SIZE_MAX;  // bestDoubled: stitch defects
   int staleRounds = 0;  // certificate rounds in a row without progress (see kRoundProgress)
   std::vector<std::vector<uint32_t>> bestCurveSamples;
-  bool repairTried = false;  // repairLeft was tried on the best round
-  // repairLeft on a copy of the best round, with the curve samples and the exempt wedges it had
-  const auto repairLeftOnBest = [&] {
+  // repairLeft on a copy of the current round (its curve samples and exempt wedges are current)
+  const auto repairLeftOnRound = [&](size_t bad) {
     BestRound trial;
-    trial.out = outIsBest ? out : best.out;
-    trial.triPatch = outIsBest ? triPatch : best.triPatch;
-    trial.vertexFace = outIsBest ? vertexFace : best.vertexFace;
-    trial.bad = bestBad;
-    if (!outIsBest) std::swap(m.samples.cm.curveSamples, bestCurveSamples);
-    exempt.vertex.resize(trial.out.vertexCount(), 0);
-    exempt.indexWedges(surf, m.samples);
-    const size_t left = repairLeft(trial);
-    if (!outIsBest) std::swap(m.samples.cm.curveSamples, bestCurveSamples);
-    exempt.vertex.resize(out.vertexCount(), 0);
-    exempt.indexWedges(surf, m.samples);
-    return left;
+    trial.out = out;
+    trial.triPatch = triPatch;
+    trial.vertexFace = vertexFace;
+    trial.bad = bad;
+    return repairLeft(trial);
   };
   for (int cert = 0;; ++cert) {
     // the first round runs the stages in their order; a later one re-meshes what the certificate
@@ -178,7 +170,16 @@ BestRound meshRounds(const Surface& surf, const RemeshOptions& opt, const Progre
     // to kRoundProgress of the best's; a best round short of that counts as stale too
     const bool progress = better && (defects < bestDoubled || verdict.collapsed < bestCollapsed ||
                                      double(verdict.bad) < kRoundProgress * double(bestBad));
-    if (better) {
+    const bool tie = !better && defects == bestDoubled && verdict.collapsed == bestCollapsed && verdict.bad == bestBad;
+    // The repair, tried on a copy of every round at least as good as the best (a tie's bad
+    // triangles are other ones, which it may take): where it takes them all, the round is the
+    // best and the last. A round of smaller triangles for what the repair takes is triangles and
+    // time for nothing (a trial costs a few percent of a round: 0.012 s against about 0.5 s for
+    // a round of ChineseDragon-10kv at 35°), and a round often trades its bad triangles for others
+    // near the same spot (ChineseDragon-10kv at 35°: one at 32.2° with two curve samples, then one
+    // at 34.97° with one, which the repair lifts; docs/decisions/0052).
+    const bool repaired = defects == 0 && verdict.bad > 0 && repairLeft && (better || tie) && repairLeftOnRound(verdict.bad) == 0;
+    if (better || (tie && repaired)) {
       bestDoubled = defects;
       bestBad = verdict.bad;
       bestCollapsed = verdict.collapsed;
@@ -186,6 +187,7 @@ BestRound meshRounds(const Surface& surf, const RemeshOptions& opt, const Progre
       bestCurveSamples = m.samples.cm.curveSamples;
       if (opt.patches) best.patches = patchSnapshot(m, out);
     }
+    if (repaired) break;
     staleRounds = progress ? 0 : staleRounds + 1;
     // Two rounds in a row without progress: what is left does not yield to size (a corner whose
     // planar and 3D angles differ, a cut meeting a curve at a small angle), and the repair takes
@@ -193,19 +195,10 @@ BestRound meshRounds(const Surface& surf, const RemeshOptions& opt, const Progre
     // next round often gets there (docs/decisions/0008). While the best round still has a stitch
     // defect the rounds go on to their cap: a non-manifold output is an error, worse than any
     // angle.
-    // ... but only when the repair does take the rest, tried on a copy of the best round (each
-    // best round once): otherwise the rounds go on to their cap (ChineseDragon-10kv at 35°: after
-    // two stale rounds the repair left a cut sample's corner at 30°; four more rounds and the
-    // repair left none; docs/decisions/0042).
-    // And before the first certificate round: where the repair alone lifts every triangle the
-    // first round has below the bound, a round's smaller triangles there are triangles for
-    // nothing (ChineseDragon-10kv with inner creases: 4,300 more for a round whose bad triangles
-    // the repair mends). Not after every round: each trial costs a repair.
-    if (better) repairTried = false;
-    if (bestDoubled == 0 && bestBad > 0 && repairLeft && !repairTried && (cert == 0 || staleRounds >= 2)) {
-      repairTried = true;
-      if (repairLeftOnBest() == 0) break;
-    }
+    // ... but only when the repair does take the rest (tried above on the best round when it
+    // was made): otherwise the rounds go on to their cap (ChineseDragon-10kv at 35°: after two
+    // stale rounds the repair left a cut sample's corner at 30°; four more rounds and the repair
+    // left none; docs/decisions/0042).
     if (staleRounds >= 2 && bestDoubled == 0 && (bestBad == 0 || !repairLeft)) break;
     // a stitch defect left at the cap gets kKeepBoundaryRounds more, its patches keeping their
     // boundary (PatchWork::keepBoundary): a non-manifold output is an error
