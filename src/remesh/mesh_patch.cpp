@@ -45,6 +45,10 @@ constexpr int kBoundPasses = 8;
 // every model of ../shared/data, ChineseDragon-10kv's certificate rounds 4 -> 1, its time 2.9 ->
 // 1.8 times the 30° run's; bench/results/deg35-2026-12-05-passes.md).
 constexpr int kExtraPassesAbove = 2;
+// There too, the stars whose smallest 3D angle is less than this above the bound get a step up
+// the gradient of their 3D angles when the optimizer's targets fail (OptimizeOptions::
+// searchBelowDeg; docs/decisions/0053).
+constexpr double kSearchAboveBoundDeg = 10.0;
 // Angle (degrees) at the new vertex of the triangle an off-center (Üngör 2009) makes with the
 // shortest edge of a bad triangle: well above the bound, so graded bands do not stay at it, while
 // the new vertex stays 1 / (2 sin 25°) ≈ 1.18 edges away and insertion radii still grow
@@ -585,12 +589,14 @@ OptimizeResult optimizeMesh(const Surface& surf, const RemeshOptions& opt, const
     std::sort(oo.keptEdges.begin(), oo.keptEdges.end());
   }
   // the planar refinement left the interior triangles below the bound and its margin: passes
-  // aimed at those still below the bound in 3D, the valence operations and kExtraPassesAbove more
-  // passes (the moves even out the stars the flips and collapses change)
+  // aimed at those still below the bound in 3D, the valence operations, kExtraPassesAbove more
+  // passes (the moves even out the stars the flips and collapses change) and the gradient steps
+  // for the stars within kSearchAboveBoundDeg of the bound
   if (aboveMaxPlanar(opt.minAngle)) {
     oo.boundPasses = kBoundPasses;
     oo.valenceOperations = true;
     oo.maxIterations += kExtraPassesAbove;
+    oo.searchBelowDeg = opt.minAngle + kSearchAboveBoundDeg;
   }
   // per vertex: the layout face its latest lift landed in, where the next one starts looking
   auto lift = [&](uint32_t v, double x, double y, Vec3& out) {

@@ -395,13 +395,29 @@ bool equilateralTarget(const Mesh& m, uint32_t v, double out[2]) {
   return true;
 }
 
+// The sum of v's star's 3D min angles (minAngleDeg3Approx) with v lifted from planar (x, y);
+// -infinity where the lift fails. Nothing changes.
+double starSumAt(Mesh& m, uint32_t v, double x, double y, const LiftFn& lift) {
+  Vec3 P;
+  if (!lift(v, x, y, P)) return -INFINITY;
+  const Vec3 keep = m.pos[v];
+  m.pos[v] = P;
+  double sum = 0;
+  for (uint32_t k = m.starStart[v]; k < m.starStart[v + 1]; ++k) sum += m.triMin(m.starTri[k]);
+  m.pos[v] = keep;
+  return sum;
+}
+
 // Move v to the first accepted candidate: the mean of the star's equilateral apexes, the ODT
 // position, then a half step toward the first (three lifts at most; others tried gained too
 // little for their cost: docs/decisions/0011). Each is computed only when the ones before it were
 // rejected: the first is taken about half the time. A star still under the bound then gets a
 // local search for a better min angle (8 directions, two step lengths relative to the star's
-// shortest edge at v). Returns whether v moved.
-bool improveVertex(Mesh& m, uint32_t v, const LiftFn& lift, double bound) {
+// shortest edge at v). One under `searchBelow` that none of the three improved gets a step up
+// the gradient of its sum of 3D min angles instead (forward differences, two lifts; then up to
+// three step lengths): the targets are planar averages, blind to how the surface bends them
+// (OptimizeOptions::searchBelowDeg). Returns whether v moved.
+bool improveVertex(Mesh& m, uint32_t v, const LiftFn& lift, double bound, double searchBelow) {
   std::vector<double>& xy = m.xy;
   const double x = xy[2 * size_t(v)], y = xy[2 * size_t(v) + 1];
   StarQuality q = starQuality(m, v);
@@ -410,20 +426,29 @@ bool improveVertex(Mesh& m, uint32_t v, const LiftFn& lift, double bound) {
   bool moved = eqOk && tryMove(m, v, eq[0], eq[1], lift, bound, q);
   if (!moved && odtTarget(m, v, t)) moved = tryMove(m, v, t[0], t[1], lift, bound, q);
   if (!moved && eqOk) moved = tryMove(m, v, 0.5 * (x + eq[0]), 0.5 * (y + eq[1]), lift, bound, q);
-  if (q.min < bound) {
-    double shortest = INFINITY;
-    for (uint32_t k = m.starStart[v]; k < m.starStart[v + 1]; ++k) {
-      const uint32_t* t3 = &m.tri[3 * size_t(m.starTri[k])];
-      for (int c = 0; c < 3; ++c)
-        if (t3[c] != v) shortest = std::min(shortest, dmath::hypot(m.p(t3[c])[0] - xy[2 * size_t(v)], m.p(t3[c])[1] - xy[2 * size_t(v) + 1]));
-    }
-    for (double step : {0.25, 0.1})
-      for (int d = 0; d < 8; ++d) {
-        const double a = d * 0.78539816339744830962;
-        const double cx = xy[2 * size_t(v)], cy = xy[2 * size_t(v) + 1];
-        moved = tryMove(m, v, cx + step * shortest * dmath::cos(a), cy + step * shortest * dmath::sin(a), lift, bound, q) || moved;
-      }
+  const bool search = q.min < bound, ascend = !search && !moved && q.min < searchBelow;
+  if (!search && !ascend) return moved;
+  double shortest = INFINITY;
+  for (uint32_t k = m.starStart[v]; k < m.starStart[v + 1]; ++k) {
+    const uint32_t* t3 = &m.tri[3 * size_t(m.starTri[k])];
+    for (int c = 0; c < 3; ++c)
+      if (t3[c] != v) shortest = std::min(shortest, dmath::hypot(m.p(t3[c])[0] - xy[2 * size_t(v)], m.p(t3[c])[1] - xy[2 * size_t(v) + 1]));
   }
+  if (ascend) {
+    const double h = 0.05 * shortest;
+    const double gx = starSumAt(m, v, x + h, y, lift) - q.sum, gy = starSumAt(m, v, x, y + h, lift) - q.sum;
+    const double g = dmath::hypot(gx, gy);
+    if (!(g > 0) || !std::isfinite(g)) return false;
+    for (double step : {0.25, 0.1, 0.04})
+      if (tryMove(m, v, x + step * shortest * gx / g, y + step * shortest * gy / g, lift, bound, q)) return true;
+    return false;
+  }
+  for (double step : {0.25, 0.1})
+    for (int d = 0; d < 8; ++d) {
+      const double a = d * 0.78539816339744830962;
+      const double cx = xy[2 * size_t(v)], cy = xy[2 * size_t(v) + 1];
+      moved = tryMove(m, v, cx + step * shortest * dmath::cos(a), cy + step * shortest * dmath::sin(a), lift, bound, q) || moved;
+    }
   return moved;
 }
 
@@ -781,7 +806,7 @@ OptimizeStats optimizePatch(std::vector<double>& xy, std::vector<uint32_t>& tria
     std::fill(nextActive.begin(), nextActive.end(), 0);
     for (uint32_t v = 0; v < nv; ++v) {
       if (fixed[v] || !active[v] || m.starStart[v] == m.starStart[v + 1]) continue;
-      if (!improveVertex(m, v, lift, o.minAngleDeg)) continue;
+      if (!improveVertex(m, v, lift, o.minAngleDeg, o.searchBelowDeg)) continue;
       ++st.moves;
       for (uint32_t k = m.starStart[v]; k < m.starStart[v + 1]; ++k)
         for (int c = 0; c < 3; ++c) nextActive[m.tri[3 * size_t(m.starTri[k]) + c]] = 1;
@@ -824,7 +849,7 @@ OptimizeStats optimizePatch(std::vector<double>& xy, std::vector<uint32_t>& tria
     size_t moves = 0;
     for (uint32_t v = 0; v < nv; ++v) {
       if (fixed[v] || !active[v] || m.starStart[v] == m.starStart[v + 1]) continue;
-      if (!improveVertex(m, v, lift, o.minAngleDeg)) continue;
+      if (!improveVertex(m, v, lift, o.minAngleDeg, o.searchBelowDeg)) continue;
       ++moves;
       for (uint32_t k = m.starStart[v]; k < m.starStart[v + 1]; ++k)
         for (int c = 0; c < 3; ++c) nextActive[m.tri[3 * size_t(m.starTri[k]) + c]] = 1;

@@ -33,6 +33,13 @@ struct OptimizeOptions {
   //! angle is below the bound (a hard cap; they stop when none is left or nothing moves or
   //! flips). 0: none.
   int boundPasses = 0;
+  //! A star whose smallest 3D angle is below this, and which none of the move targets (planar
+  //! averages: the equilateral apexes, the ODT position) improved, gets a step up the gradient
+  //! of its sum of 3D min angles (forward differences: two lifts, then up to three step
+  //! lengths): where the lift bends planar shapes (curvature, or roughness at the scale of the
+  //! triangles, as on a scan) the targets miss the best 3D angles, often by a short step aside.
+  //! 0 (or at most minAngleDeg): none.
+  double searchBelowDeg = 0.0;
   //! The valence operations: an edge also flips when that brings its four vertices' triangle
   //! counts nearer their ideal (6 inside, the planar angle sum over 60 degrees at a curve sample)
   //! with both new triangles at or above the bound, and an edge (u, w) with u free collapses

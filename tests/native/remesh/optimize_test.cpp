@@ -8,6 +8,7 @@
 #include "remesh/planar_checks.h"
 #include "planar/refine.h"
 #include "remesh/optimize.h"
+#include "core/constants.h"
 
 using namespace conformesh;
 
@@ -103,6 +104,49 @@ TEST_CASE("optimize: a jittered planar grid gets better angles, boundary and fix
 
 TEST_CASE("optimize: moves are judged by the 3D angles of the lifted triangles (paraboloid)") {
   checkOptimize([](double x, double y) { return Vec3{x, y, 0.8 * (x * x + y * y)}; }, "paraboloid");
+}
+
+TEST_CASE("optimize: searchBelowDeg's gradient steps raise the mean 3D min angle where the lift bends the planar targets (a bumpy sheet), keeping the bound") {
+  // bumps about three grid cells wide and two thirds of a cell high: the planar targets
+  // (equilateral apexes, ODT) miss the best 3D positions by a step aside
+  const auto surface = [](double x, double y) { return Vec3{x, y, 0.04 * std::sin(10 * kPi * x) * std::sin(10 * kPi * y)}; };
+  const auto lift = [&](uint32_t, double x, double y, Vec3& out) {
+    if (x < 0 || y < 0 || x > 1 || y > 1) return false;
+    out = surface(x, y);
+    return true;
+  };
+  const Grid g0 = jitteredGrid(16, 0.35);
+  std::vector<Vec3> pos0;
+  for (size_t v = 0; v < g0.fixed.size(); ++v) pos0.push_back(surface(g0.xy[2 * v], g0.xy[2 * v + 1]));
+  double worst0 = 180;
+  for (size_t t = 0; t < g0.tri.size() / 3; ++t) worst0 = std::min(worst0, minAngleOf(g0.tri, pos0, t));
+  double mean[2] = {0, 0};
+  for (int search = 0; search < 2; ++search) {
+    Grid g = g0;
+    std::vector<Vec3> pos = pos0;
+    optimization::OptimizeOptions o;
+    o.minAngleDeg = 35;
+    o.maxIterations = 4;
+    o.searchBelowDeg = search ? o.minAngleDeg + 10 : 0;
+    const auto st = optimization::optimizePatch(g.xy, g.tri, pos, g.fixed, lift, o);
+    double worst = 180;
+    const size_t nt = g.tri.size() / 3;
+    for (size_t t = 0; t < nt; ++t) {
+      const uint32_t* v = &g.tri[3 * t];
+      const double *a = &g.xy[2 * v[0]], *b = &g.xy[2 * v[1]], *c = &g.xy[2 * v[2]];
+      CHECK((b[0] - a[0]) * (c[1] - a[1]) - (b[1] - a[1]) * (c[0] - a[0]) > 0);
+      mean[search] += minAngleOf(g.tri, pos, t) / double(nt);
+      worst = std::min(worst, minAngleOf(g.tri, pos, t));
+    }
+    CHECK(worst >= std::min(worst0, o.minAngleDeg));
+    for (size_t v = 0; v < g.fixed.size(); ++v) {
+      if (g.fixed[v]) CHECK((g.xy[2 * v] == g0.xy[2 * v] && g.xy[2 * v + 1] == g0.xy[2 * v + 1]));
+      const Vec3 s = surface(g.xy[2 * v], g.xy[2 * v + 1]);
+      CHECK(norm(s - pos[v]) < 1e-15);
+    }
+    MESSAGE(std::string(search ? "with" : "without") << " the gradient steps: mean min angle " << mean[search] << ", worst " << worst << ", " << st.moves << " moves");
+  }
+  CHECK(mean[1] > mean[0] + 0.2);  // measured: 50.16 -> 50.57
 }
 
 TEST_CASE("optimize: zero passes change nothing") {
