@@ -8,6 +8,7 @@
 // With --defaults, ours runs at the default options instead (the edge length drives), for the
 // count at equal accuracy at the defaults; the table goes to equal-hausdorff-<timestamp>.md.
 // usage: node bench/max_error.mjs [--rel 1e-3 | --defaults] [--models a.off,b.obj] [--bin build/native/conformesh]
+//   [--work DIR]   (its outputs; default bench/work/max-error: two runs at once need two)
 //   needs build/tools/meshq (bench/models.sh builds it) and bench/work/peers/cgal_remesh (bench/run.sh)
 import { execFileSync, spawnSync } from 'node:child_process';
 import { mkdirSync, readdirSync, readFileSync, writeFileSync } from 'node:fs';
@@ -24,7 +25,7 @@ const DEFAULTS = process.argv.includes('--defaults');
 const BIN = arg('--bin', path.join(ROOT, 'build/native/conformesh'));
 const MESHQ = path.join(ROOT, 'build/tools/meshq');
 const CGAL = path.join(ROOT, 'bench/work/peers/cgal_remesh');
-const WORK = path.join(ROOT, 'bench/work/max-error');
+const WORK = path.resolve(arg('--work', path.join(ROOT, 'bench/work/max-error')));
 const CGAL_RUNS = 6;  // CGAL runs per model at most
 mkdirSync(WORK, { recursive: true });
 const only = (arg('--models', '') || '').split(',').filter(Boolean);
