@@ -17,9 +17,9 @@ namespace conformesh::features {
 //! at a right angle on the whole can leave the curve there at a few degrees). Reroute such a cut
 //! end: from the cut's vertex about 3·scale before the end, the shortest path of input edges to
 //! a smooth point of another curve (a shortest path to a curve meets it at a right angle); kept
-//! only when the angle gets better and every patch stays a disk. Rebuilds the curves. Returns the number of ends rerouted.
-//! `region` (input faces; empty: all): only cuts beside it are rerouted (splitPatch passes the
-//! split patch, so a split does not retry every cut end of the mesh).
+//! only when the angle gets better and every patch stays a disk. Rebuilds the curves. Returns the
+//! number of ends rerouted. `region` (input faces; empty: all): only cuts beside it are rerouted
+//! (splitPatch passes the split patch, so a split does not retry every cut end of the mesh).
 uint32_t improveCutJunctions(const EdgeGraph& g, Segmentation& seg, double scale, const std::vector<uint32_t>& region = {});
 
 //! Where a cut makes a wedge below 45° at a vertex (a kink in the cut, or a cut leaving another
