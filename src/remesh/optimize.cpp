@@ -19,7 +19,6 @@ namespace {
 inline double sq(double x) { return x * x; }
 
 constexpr double kRadToDeg = 57.295779513082320876798;
-constexpr uint32_t kNoTri = kNoTriangle;
 
 using planar::orient2d;
 
@@ -200,8 +199,8 @@ void bucketGuard(Mesh& m, const std::vector<uint32_t>& tris, const std::vector<u
 // All the guard points into all triangles.
 void bucketGuard(Mesh& m) {
   const size_t nt = m.tri.size() / 3, ns = m.guard->pos.size();
-  m.head.assign(nt, kNoTri);
-  m.next.assign(ns, kNoTri);
+  m.head.assign(nt, kNoTriangle);
+  m.next.assign(ns, kNoTriangle);
   m.err.assign(nt, 0.0);
   std::vector<uint32_t> tris(nt), pts(ns);
   for (size_t t = 0; t < nt; ++t) tris[t] = uint32_t(t);
@@ -216,16 +215,16 @@ void rebucketGuard(Mesh& m, const std::vector<uint32_t>& changed) {
   const size_t ns = m.guard->pos.size();
   std::vector<uint8_t> tracked(ns, 0);
   for (const uint32_t h : m.head)
-    for (uint32_t k = h; k != kNoTri; k = m.next[k]) tracked[k] = 1;
+    for (uint32_t k = h; k != kNoTriangle; k = m.next[k]) tracked[k] = 1;
   std::vector<uint32_t> pts;
   for (const uint32_t t : changed) {
-    for (uint32_t k = m.head[t]; k != kNoTri; k = m.next[k]) tracked[k] = 0;
-    m.head[t] = kNoTri;
+    for (uint32_t k = m.head[t]; k != kNoTriangle; k = m.next[k]) tracked[k] = 0;
+    m.head[t] = kNoTriangle;
     m.err[t] = 0;
   }
   for (size_t k = 0; k < ns; ++k)
     if (!tracked[k]) {
-      m.next[k] = kNoTri;
+      m.next[k] = kNoTriangle;
       pts.push_back(uint32_t(k));
     }
   bucketGuard(m, changed, pts);
@@ -242,7 +241,7 @@ bool guardAccepts(const Mesh& m, const uint32_t* from, size_t nFrom, const uint3
   const double allowed = std::max(before, sq(m.guard->tolerance));
   if (std::sqrt(before) + moved <= m.guard->tolerance) return true;  // no point can get past it
   for (size_t i = 0; i < nFrom; ++i)
-    for (uint32_t k = m.head[from[i]]; k != kNoTri; k = m.next[k]) {
+    for (uint32_t k = m.head[from[i]]; k != kNoTriangle; k = m.next[k]) {
       double d = INFINITY;
       for (size_t j = 0; j < nTo && d > allowed; ++j) d = std::min(d, distance2(m, &m.tri[3 * size_t(to[j])], m.guard->pos[k]));
       if (d > allowed) return false;
@@ -258,8 +257,8 @@ void rebucket(Mesh& m, const uint32_t* ts, size_t n) {
   std::vector<uint32_t>& pts = m.pending;
   pts.clear();
   for (size_t i = 0; i < n; ++i) {
-    for (uint32_t k = m.head[ts[i]]; k != kNoTri; k = m.next[k]) pts.push_back(k);
-    m.head[ts[i]] = kNoTri;
+    for (uint32_t k = m.head[ts[i]]; k != kNoTriangle; k = m.next[k]) pts.push_back(k);
+    m.head[ts[i]] = kNoTriangle;
     m.err[ts[i]] = 0;
   }
   for (uint32_t k : pts)
@@ -468,13 +467,13 @@ bool guardAcceptsFlip(Mesh& m, uint32_t t0, uint32_t t1, uint32_t c0, uint32_t x
   return ok;
 }
 
-// Triangle adjacency: adj[3t + c] is the triangle across t's edge (v[c], v[c+1]), kNoTri on the
+// Triangle adjacency: adj[3t + c] is the triangle across t's edge (v[c], v[c+1]), kNoTriangle on the
 // boundary. Built from the stars once per patch (each edge at the vertex it leaves: the triangle
 // of the star that enters that vertex from the edge's other end); flipPass keeps it current.
 // Pre: the triangles are consistently oriented (a refinement's are).
 void buildAdjacency(Mesh& m) {
   const size_t nt = m.tri.size() / 3, nv = m.starStart.size() - 1;
-  m.adj.assign(3 * nt, kNoTri);
+  m.adj.assign(3 * nt, kNoTriangle);
   struct Corner3 {
     uint32_t t, next, prev;
     int k;
@@ -497,9 +496,9 @@ void buildAdjacency(Mesh& m) {
   }
 }
 
-// In triangle t, the adjacency slot that names `from` now names `to` (no-op for kNoTri).
+// In triangle t, the adjacency slot that names `from` now names `to` (no-op for kNoTriangle).
 inline void relink(Mesh& m, uint32_t t, uint32_t from, uint32_t to) {
-  if (t == kNoTri) return;
+  if (t == kNoTriangle) return;
   for (int c = 0; c < 3; ++c)
     if (m.adj[3 * size_t(t) + c] == from) {
       m.adj[3 * size_t(t) + c] = to;
@@ -526,7 +525,7 @@ size_t flipPass(Mesh& m, std::vector<uint8_t>& touched, const std::vector<uint8_
     }
     for (int c = 0; c < 3; ++c) {
       const uint32_t t1 = m.adj[3 * size_t(t0) + c];
-      if (t1 == kNoTri || t1 < t0) continue;
+      if (t1 == kNoTriangle || t1 < t0) continue;
       uint32_t* v0 = &m.tri[3 * size_t(t0)];
       const uint32_t x = v0[c], y = v0[kNext[c]], c0 = v0[kPrev[c]];
       if (!(region[x] || region[y])) continue;
@@ -621,7 +620,7 @@ size_t collapsePass(Mesh& m, std::vector<uint8_t>& touched, const std::vector<ui
   for (uint32_t t0 = 0; t0 < nt; ++t0) {
     for (int c = 0; c < 3 && !dead[t0]; ++c) {
       const uint32_t t1 = m.adj[3 * size_t(t0) + c];
-      if (t1 == kNoTri || t1 < t0 || dead[t1]) continue;
+      if (t1 == kNoTriangle || t1 < t0 || dead[t1]) continue;
       const uint32_t* v0 = &m.tri[3 * size_t(t0)];
       const uint32_t x = v0[c], y = v0[kNext[c]], c0 = v0[kPrev[c]];
       if (locked[x] || locked[y] || !(region[x] || region[y])) continue;
@@ -688,7 +687,7 @@ size_t collapsePass(Mesh& m, std::vector<uint8_t>& touched, const std::vector<ui
     }
   }
   if (count == 0) return 0;
-  std::vector<uint32_t> renumbered(nt, kNoTri);
+  std::vector<uint32_t> renumbered(nt, kNoTriangle);
   size_t out = 0;
   for (size_t t = 0; t < nt; ++t) {
     if (dead[t]) continue;
@@ -703,10 +702,10 @@ size_t collapsePass(Mesh& m, std::vector<uint8_t>& touched, const std::vector<ui
     // the buckets of the triangles left, renumbered; the points of the dead ones and of those
     // that took w for u sorted again into the latter (they cover u's old star), not every point
     // into every triangle
-    std::vector<uint32_t> head(out, kNoTri), changed;
+    std::vector<uint32_t> head(out, kNoTriangle), changed;
     std::vector<double> err(out, 0.0);
     for (size_t t = 0; t < nt; ++t)
-      if (const uint32_t n = renumbered[t]; n != kNoTri) {
+      if (const uint32_t n = renumbered[t]; n != kNoTriangle) {
         head[n] = m.head[t], err[n] = m.err[t];
         if (reshaped[t]) changed.push_back(n);
       }
